@@ -1,0 +1,532 @@
+!> The run: read the deck, set up, the predictor-corrector time loop, output,
+!> and the one failure path (flag reduced every cycle, collective final dump,
+!> MPI finalized, non-zero exit).
+module app_run
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+  use core_kinds, only: rk, i8
+  use core_status, only: status_t
+  use core_timer, only: wall_time
+  use mesh_global, only: global_mesh_t
+  use mesh_local, only: mesh_t
+  use mesh_geometry, only: hex_centroid
+  use hydro_state, only: state_t, HOURGLASS_STIFFNESS
+  use hydro_boundary, only: boundary_t
+  use hydro_kernels, only: DT_CFL, DT_VOLUME
+  use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
+      hydro_energy_update, hydro_velocity_update, hydro_time_step, hydro_energies
+  use io_deck, only: config_t, deck_read
+  use io_h5, only: h5_library_open, h5_library_close
+  use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
+  use app_setup, only: setup_mesh, setup_state
+  use parallel_env, only: par_rank, par_size, par_allgather, par_sum, par_sum_array, par_bcast
+  implicit none
+  private
+  public :: run_deck
+
+  integer, parameter, public :: EXIT_OK = 0, EXIT_INPUT = 1, EXIT_FAILURE = 2, EXIT_INCOMPLETE = 3
+  integer, parameter :: FAIL_NONE = 0, FAIL_VOLUME = 1, FAIL_NAN = 2, FAIL_DT = 3
+  integer, parameter :: NRECORD = 8
+
+  !> What the end-of-cycle reduction found.
+  type :: control_t
+    real(rk) :: dt = huge(1.0_rk) !< stable step
+    real(rk) :: dt_zone = 0.0_rk !< global id of the zone that sets it
+    integer :: dt_reason = DT_CFL
+    integer :: fail = FAIL_NONE
+    real(rk) :: fail_zone = 0.0_rk !< global id (zone or node)
+    real(rk) :: fail_position(3) = 0.0_rk
+  end type control_t
+
+contains
+
+  !> Run the deck; returns the process exit code (same on every rank).
+  subroutine run_deck(deck_path, restart_path, check_only, code)
+    character(len=*), intent(in) :: deck_path, restart_path
+    logical, intent(in) :: check_only !< validate the deck and set up, then stop
+    integer, intent(out) :: code
+    type(config_t) :: config
+    type(status_t) :: status
+    type(global_mesh_t) :: global
+    type(mesh_t) :: mesh
+    type(boundary_t) :: bc
+    type(state_t) :: state
+    type(material_zones_t) :: mz
+    type(control_t) :: ctl
+    character(len=256) :: restart
+    character(len=400) :: msg
+    logical :: exists
+    integer :: bad, ierr
+
+    code = EXIT_OK
+    call h5_library_open(ierr, msg)
+    if (ierr /= 0) then
+      call status%add('HDF5: '//trim(msg))
+      call report(status)
+      code = EXIT_INPUT
+      return
+    end if
+    call deck_read(deck_path, config, status)
+    restart = config%restart
+    if (len_trim(restart_path) > 0) restart = restart_path
+    if (status%ok() .and. len_trim(restart) > 0) then
+      exists = .false.
+      if (par_rank() == 0) inquire(file=restart, exist=exists)
+      call par_bcast(exists)
+      if (.not. exists) call status%add('&control: restart: file '''//trim(restart)// &
+          ''' does not exist')
+    end if
+    if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
+    if (status%ok()) call setup_state(config, global, mesh, state, mz, status)
+    if (.not. status%ok()) then
+      call report(status)
+      code = EXIT_INPUT
+      return
+    end if
+    call global%free()
+    if (len_trim(restart) > 0) then
+      call dump_read(restart, mesh, state, status)
+      if (.not. status%ok()) then
+        call report(status)
+        code = EXIT_INPUT
+        return
+      end if
+    end if
+    if (par_rank() == 0) call echo(config, mesh, restart)
+    if (check_only) return
+
+    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, &
+        state%node_position, state%node_velocity, bad)
+    call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl)
+    if (len_trim(restart) == 0) then
+      state%energy_initial = total_energy(mesh, state)
+      call history_open(config, state, .false.)
+    else
+      call history_open(config, state, .true.)
+    end if
+    call time_loop(config, mesh, state, mz, bc, ctl, len_trim(restart) > 0, code)
+    call h5_library_close(ierr, msg)
+  end subroutine run_deck
+
+  !> Rank 0 prints every input problem at once.
+  subroutine report(status)
+    type(status_t), intent(in) :: status
+    integer :: i
+    if (par_rank() /= 0) return
+    do i = 1, min(status%count, size(status%messages))
+      write(error_unit, '(a)') 'input error: '//trim(status%messages(i))
+    end do
+    write(error_unit, '(a,i0,a)') 'impact3d: ', status%count, &
+        ' input error(s); nothing was run'
+  end subroutine report
+
+  !> Echo the effective set-up.
+  subroutine echo(config, mesh, restart)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: restart
+    write(output_unit, '(a)') 'impact3d: '//trim(config%title)
+    write(output_unit, '(a,i0,a,i0,a,i0,a)') '  mesh: ', mesh%nzone_global, ' zones, ', &
+        mesh%nnode_global, ' nodes on ', par_size(), ' rank(s)'
+    write(output_unit, '(a,es12.5,a,f6.3,a,f6.3,a,f6.3)') '  t_end = ', config%t_end, &
+        '  cfl = ', config%hydro%cfl, '  q_linear = ', config%hydro%q_linear, &
+        '  q_quadratic = ', config%hydro%q_quadratic
+    if (len_trim(restart) > 0) write(output_unit, '(a)') '  restart from '//trim(restart)
+    flush(output_unit)
+  end subroutine echo
+
+  real(rk) function total_energy(mesh, state)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    real(rk) :: sums(5)
+    call hydro_energies(mesh, state, sums)
+    total_energy = par_sum(sums(1)) + par_sum(sums(2))
+  end function total_energy
+
+  !> Local checks, local stable step, one collective: every rank learns the
+  !> global step (ties to the lowest zone id) and the first failure.
+  subroutine end_of_cycle_control(mesh, state, config, bad, bad_kind, ctl)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    type(config_t), intent(in) :: config
+    integer, intent(in) :: bad !< local zone with bad volume (0 = none) from the last update
+    integer, intent(in) :: bad_kind !< FAIL_VOLUME from an earlier stage, else FAIL_NONE
+    type(control_t), intent(out) :: ctl
+    real(rk) :: record(NRECORD), dt
+    real(rk), allocatable :: all(:, :)
+    integer :: zone, reason, z, n, r, fail
+    real(rk) :: where(3), gid
+
+    call hydro_time_step(mesh, state, config%hydro, dt, zone, reason)
+    fail = FAIL_NONE
+    gid = 0.0_rk
+    where = 0.0_rk
+    if (bad > 0 .or. bad_kind /= FAIL_NONE) then
+      fail = FAIL_VOLUME
+      z = max(bad, 1)
+      gid = real(mesh%zone_gid(z), rk)
+      where = hex_centroid(state%node_position(:, mesh%zone_node(:, z)))
+    else
+      do z = 1, mesh%nzone_owned
+        if (ieee_is_nan(state%zone_energy(z))) then
+          fail = FAIL_NAN
+          gid = real(mesh%zone_gid(z), rk)
+          where = hex_centroid(state%node_position(:, mesh%zone_node(:, z)))
+          exit
+        end if
+      end do
+      if (fail == FAIL_NONE) then
+        do n = 1, mesh%nnode_owned
+          if (any(ieee_is_nan(state%node_velocity(:, n)))) then
+            fail = FAIL_NAN
+            gid = -real(mesh%node_gid(n), rk)
+            where = state%node_position(:, n)
+            exit
+          end if
+        end do
+      end if
+    end if
+    record = [dt, 0.0_rk, real(reason, rk), real(fail, rk), gid, where]
+    if (zone > 0) record(2) = real(mesh%zone_gid(zone), rk)
+    allocate(all(NRECORD, par_size()))
+    call par_allgather(record, all)
+    do r = 1, par_size()
+      if (all(1, r) < ctl%dt .or. (all(1, r) == ctl%dt .and. all(2, r) < ctl%dt_zone)) then
+        ctl%dt = all(1, r)
+        ctl%dt_zone = all(2, r)
+        ctl%dt_reason = nint(all(3, r))
+      end if
+      if (nint(all(4, r)) /= FAIL_NONE .and. ctl%fail == FAIL_NONE) then
+        ctl%fail = nint(all(4, r))
+        ctl%fail_zone = all(5, r)
+        ctl%fail_position = all(6:8, r)
+      end if
+    end do
+  end subroutine end_of_cycle_control
+
+  !> The predictor-corrector loop.
+  subroutine time_loop(config, mesh, state, mz, bc, ctl, restarted, code)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_zones_t), intent(in) :: mz
+    type(boundary_t), intent(inout) :: bc
+    type(control_t), intent(inout) :: ctl
+    logical, intent(in) :: restarted
+    integer, intent(out) :: code
+    real(rk) :: dt, dt_stable, next_dump, work, wall_start, wall_status, work_sum
+    integer(i8) :: cycle_status
+    integer :: bad, bad_half
+    logical :: last, dump_now, ok
+    character(len=16) :: reason
+
+    code = EXIT_OK
+    wall_start = wall_time()
+    wall_status = wall_start
+    cycle_status = state%cycle
+    if (.not. restarted) then
+      call write_dump(config, mesh, state, 'initial', wall_start, ok)
+      if (.not. ok) then
+        code = EXIT_FAILURE
+        return
+      end if
+    end if
+    next_dump = huge(1.0_rk)
+    if (config%output%dump_interval > 0.0_rk) next_dump = config%output%dump_interval * &
+        (aint(state%time / config%output%dump_interval + 1.0e-9_rk) + 1.0_rk)
+
+    do
+      if (ctl%fail /= FAIL_NONE) then
+        call fail_stop(config, mesh, state, ctl, wall_start)
+        code = EXIT_FAILURE
+        return
+      end if
+      if (state%time >= config%t_end) exit
+      if (state%cycle >= config%max_cycles) then
+        if (par_rank() == 0) write(error_unit, '(a,i0,a,es12.5,a)') &
+            'impact3d: stopped at max_cycles = ', config%max_cycles, ' before t_end (t = ', &
+            state%time, '); the last dump is a restart point'
+        call write_dump(config, mesh, state, 'max_cycles', wall_start, ok)
+        code = EXIT_INCOMPLETE
+        return
+      end if
+
+      ! Step: stability, growth, largest step, then exact landing on dumps and t_end.
+      dt_stable = min(ctl%dt, config%hydro%dt_max)
+      if (state%dt_previous > 0.0_rk) then
+        dt_stable = min(dt_stable, config%hydro%dt_growth * state%dt_previous)
+      else if (config%hydro%dt_initial > 0.0_rk) then
+        dt_stable = min(dt_stable, config%hydro%dt_initial)
+      end if
+      dt = dt_stable
+      last = .false.
+      dump_now = .false.
+      if (config%t_end - state%time <= dt * (1.0_rk + 1.0e-9_rk)) then
+        dt = config%t_end - state%time
+        last = .true.
+      end if
+      if (next_dump - state%time <= dt * (1.0_rk + 1.0e-9_rk)) then
+        dt = next_dump - state%time
+        dump_now = .true.
+      end if
+      if (dt < config%hydro%dt_min .and. .not. (last .or. dump_now)) then
+        ctl%fail = FAIL_DT
+        ctl%fail_zone = ctl%dt_zone
+        cycle
+      end if
+      state%dt = dt
+
+      call step(config, mesh, state, mz, bc, dt, bad_half, bad, work)
+      state%boundary_work = state%boundary_work + par_sum(work)
+      state%time = state%time + dt
+      if (last) state%time = config%t_end
+      if (dump_now .and. abs(state%time - next_dump) <= 1.0e-9_rk * dt) state%time = next_dump
+      state%cycle = state%cycle + 1
+      state%dt_previous = dt_stable
+
+      if (bad_half > 0) then
+        call end_of_cycle_control(mesh, state, config, bad_half, FAIL_VOLUME, ctl)
+      else
+        call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl)
+      end if
+      if (ctl%fail /= FAIL_NONE) cycle
+
+      if (mod(state%cycle, int(config%output%history_every, i8)) == 0 .or. last) &
+          call history_write(config, mesh, state)
+      if (mod(state%cycle, int(config%output%status_every, i8)) == 0 .or. last) then
+        work_sum = real(mesh%nzone_global, rk) * real(state%cycle - cycle_status, rk)
+        select case (ctl%dt_reason)
+        case (DT_VOLUME)
+          reason = 'volume'
+        case default
+          reason = 'cfl'
+        end select
+        call status_line(config, mesh, state, ctl, trim(reason), &
+            work_sum / max(wall_time() - wall_status, 1.0e-9_rk), wall_start)
+        wall_status = wall_time()
+        cycle_status = state%cycle
+      end if
+      if (dump_now) then
+        next_dump = next_dump + config%output%dump_interval
+        if (.not. last) call write_dump(config, mesh, state, 'interval', wall_start, ok)
+        if (.not. ok) then
+          code = EXIT_FAILURE
+          return
+        end if
+      else if (config%output%dump_cycles > 0 .and. .not. last) then
+        if (mod(state%cycle, int(config%output%dump_cycles, i8)) == 0) then
+          call write_dump(config, mesh, state, 'cycles', wall_start, ok)
+          if (.not. ok) then
+            code = EXIT_FAILURE
+            return
+          end if
+        end if
+      end if
+    end do
+    call write_dump(config, mesh, state, 'final', wall_start, ok)
+    if (.not. ok) then
+      code = EXIT_FAILURE
+      return
+    end if
+    if (par_rank() == 0) write(output_unit, '(a,i0,a,f10.3,a)') 'impact3d: done, ', &
+        state%cycle, ' cycles, ', wall_time() - wall_start, ' s'
+  end subroutine time_loop
+
+  !> One predictor-corrector cycle from t^n to t^n+1.
+  subroutine step(config, mesh, state, mz, bc, dt, bad_half, bad, work)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_zones_t), intent(in) :: mz
+    type(boundary_t), intent(inout) :: bc
+    real(rk), intent(in) :: dt
+    integer, intent(out) :: bad_half, bad
+    real(rk), intent(out) :: work
+    real(rk) :: unused
+    integer :: n
+
+    state%node_position_old = state%node_position
+    state%node_velocity_old = state%node_velocity
+    state%zone_energy_old = state%zone_energy
+
+    ! Predictor: forces at t^n, half-step velocities, geometry and EOS at t^n+1/2.
+    call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
+        state%node_velocity, 0.0_rk)
+    call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
+    call mesh%node_halo%exchange(state%node_velocity_half)
+    do n = 1, mesh%nnode
+      state%node_position(:, n) = state%node_position_old(:, n) + 0.5_rk * dt * &
+          state%node_velocity_half(:, n)
+    end do
+    call hydro_energy_update(mesh, state, state%node_velocity_half, 0.5_rk * dt)
+    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, &
+        state%node_position, state%node_velocity_half, bad_half)
+
+    ! Corrector: forces at t^n+1/2, final velocities, positions and energies.
+    call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
+        state%node_velocity_half, dt)
+    call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
+    call mesh%node_halo%exchange(state%node_velocity)
+    do n = 1, mesh%nnode
+      state%node_velocity_half(:, n) = 0.5_rk * (state%node_velocity_old(:, n) + &
+          state%node_velocity(:, n))
+      state%node_position(:, n) = state%node_position_old(:, n) + dt * &
+          state%node_velocity_half(:, n)
+    end do
+    call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
+    if (config%hydro%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = &
+        state%zone_hourglass_new
+    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, &
+        state%node_position, state%node_velocity, bad)
+  end subroutine step
+
+  subroutine write_dump(config, mesh, state, why, wall_start, ok)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(in) :: state
+    character(len=*), intent(in) :: why
+    real(rk), intent(in) :: wall_start
+    logical, intent(out) :: ok !< false when the dump could not be written (same on all ranks)
+    type(status_t) :: status
+    type(run_info_t) :: info
+    character(len=512) :: path
+    character(len=:), allocatable :: names
+    integer :: b
+
+    write(path, '(a,"/",a,"_",i6.6,".h5")') trim(config%output%directory), &
+        trim(config%output%prefix), state%cycle
+    if (why == 'failure') write(path, '(a,"/",a,"_",i6.6,"_failed.h5")') &
+        trim(config%output%directory), trim(config%output%prefix), state%cycle
+    info%wall_seconds = wall_time() - wall_start
+    info%reason = why
+    names = ''
+    do b = 1, size(config%blocks)
+      if (b > 1) names = names//','
+      names = names//trim(config%blocks(b)%name)
+    end do
+    call dump_write(trim(path), config%title, 'consistent (decks: cm g us Mbar)', names, &
+        mesh, state, info, status)
+    ok = status%ok()
+    if (.not. ok) then
+      if (par_rank() == 0) write(error_unit, '(a)') 'error: '//trim(status%messages(1))
+      return
+    end if
+    call dump_series_update(trim(config%output%directory)//'/'//trim(config%output%prefix), &
+        trim(path), config%title, state%cycle, state%time, mesh%nnode_global, mesh%nzone_global)
+    if (par_rank() == 0) write(output_unit, '(a)') '  dump '//trim(path)
+  end subroutine write_dump
+
+  !> The single failure path: message, collective final dump, caller exits non-zero.
+  subroutine fail_stop(config, mesh, state, ctl, wall_start)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(in) :: state
+    type(control_t), intent(in) :: ctl
+    real(rk), intent(in) :: wall_start
+    character(len=64) :: what
+    logical :: ok
+    if (par_rank() == 0) then
+      select case (ctl%fail)
+      case (FAIL_VOLUME)
+        what = 'zero or negative volume in zone'
+      case (FAIL_NAN)
+        if (ctl%fail_zone < 0.0_rk) then
+          what = 'NaN velocity at node'
+        else
+          what = 'NaN energy in zone'
+        end if
+      case default
+        what = 'time step below dt_min, set by zone'
+      end select
+      write(error_unit, '(a,1x,i0,a,3es14.6,a,i0,a,es14.6)') 'error: '//trim(what), &
+          nint(abs(ctl%fail_zone), i8), ' at (', ctl%fail_position, ') in cycle ', &
+          state%cycle, ', time ', state%time
+      if (ctl%fail == FAIL_DT) write(error_unit, '(a,es12.5,a,es12.5)') '  dt = ', ctl%dt, &
+          ' < dt_min = ', config%hydro%dt_min
+      write(error_unit, '(a)') '  writing a final dump and stopping'
+      flush(error_unit)
+    end if
+    call write_dump(config, mesh, state, 'failure', wall_start, ok)
+  end subroutine fail_stop
+
+  !> history.txt: a fresh file, or on restart the lines up to the restart cycle.
+  subroutine history_open(config, state, restarted)
+    type(config_t), intent(in) :: config
+    type(state_t), intent(in) :: state
+    logical, intent(in) :: restarted
+    integer :: unit, ios, n
+    character(len=512) :: line
+    character(len=512), allocatable :: keep(:)
+    integer(i8) :: c
+    character(len=:), allocatable :: path
+    logical :: exists
+    if (par_rank() /= 0) return
+    path = trim(config%output%directory)//'/history.txt'
+    allocate(keep(0))
+    inquire(file=path, exist=exists)
+    if (restarted .and. exists) then
+      open(newunit=unit, file=path, status='old', action='read')
+      read(unit, '(a)', iostat=ios) line
+      do
+        read(unit, '(a)', iostat=ios) line
+        if (ios /= 0) exit
+        read(line, *, iostat=ios) c
+        if (ios == 0 .and. c <= state%cycle) keep = [keep, line]
+      end do
+      close(unit)
+    end if
+    open(newunit=unit, file=path, status='replace', action='write')
+    write(unit, '(a)') '# cycle time dt internal_energy kinetic_energy boundary_work '// &
+        'total_energy energy_error momentum_x momentum_y momentum_z'
+    do n = 1, size(keep)
+      write(unit, '(a)') trim(keep(n))
+    end do
+    close(unit)
+  end subroutine history_open
+
+  subroutine history_write(config, mesh, state)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    real(rk) :: sums(5), total
+    integer :: unit
+    call hydro_energies(mesh, state, sums)
+    call par_sum_array(sums)
+    if (par_rank() /= 0) return
+    total = sums(1) + sums(2)
+    open(newunit=unit, file=trim(config%output%directory)//'/history.txt', status='old', &
+        position='append', action='write')
+    write(unit, '(i0,10(1x,es23.15e3))') state%cycle, state%time, state%dt, sums(1), sums(2), &
+        state%boundary_work, total, relative_error(total, state), sums(3:5)
+    close(unit)
+  end subroutine history_write
+
+  real(rk) function relative_error(total, state)
+    real(rk), intent(in) :: total
+    type(state_t), intent(in) :: state
+    relative_error = (total - state%boundary_work - state%energy_initial) / &
+        max(abs(state%energy_initial), tiny(1.0_rk))
+  end function relative_error
+
+  subroutine status_line(config, mesh, state, ctl, reason, rate, wall_start)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    type(control_t), intent(in) :: ctl
+    character(len=*), intent(in) :: reason
+    real(rk), intent(in) :: rate, wall_start
+    real(rk) :: sums(5), eta, elapsed
+    call hydro_energies(mesh, state, sums)
+    call par_sum_array(sums)
+    if (par_rank() /= 0) return
+    elapsed = wall_time() - wall_start
+    eta = 0.0_rk
+    if (state%time > 0.0_rk) eta = elapsed * (config%t_end - state%time) / state%time
+    write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f9.1,a)') &
+        'cycle', state%cycle, '  t=', state%time, '  dt=', state%dt, ' (', reason, ' zone ', &
+        nint(ctl%dt_zone, i8), ')  dE/E=', relative_error(sums(1) + sums(2), state), &
+        '  ', rate, ' zone-cycles/s  ETA ', eta, ' s'
+    flush(output_unit)
+  end subroutine status_line
+
+end module app_run

@@ -1,0 +1,99 @@
+!> Set-up of a run: mesh, partition, blocks, boundaries, initial state.
+module app_setup
+  use core_kinds, only: rk, ik
+  use core_status, only: status_t
+  use mesh_geometry, only: hex_centroid
+  use mesh_global, only: global_mesh_t, mesh_make_box
+  use mesh_local, only: mesh_t, mesh_build_local
+  use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS
+  use hydro_boundary, only: boundary_t, boundary_setup
+  use hydro_initial, only: initial_apply
+  use hydro_driver, only: material_zones_t, material_zones_build
+  use io_deck, only: config_t
+  use parallel_env, only: par_size
+  use parallel_partition, only: partition_zones
+  implicit none
+  private
+  public :: setup_mesh, setup_state, assign_blocks
+
+contains
+
+  !> Each zone belongs to the last block whose box holds its centroid.
+  subroutine assign_blocks(config, global, status)
+    type(config_t), intent(in) :: config
+    type(global_mesh_t), intent(inout) :: global
+    type(status_t), intent(inout) :: status
+    integer :: z, b, missing
+    real(rk) :: c(3)
+    character(len=32) :: text
+    missing = 0
+    do z = 1, global%nzone
+      c = hex_centroid(global%coordinates(:, global%connectivity(:, z)))
+      global%zone_block(z) = 0
+      do b = 1, size(config%blocks)
+        associate(box => config%blocks(b)%box)
+          if (c(1) >= box(1) .and. c(1) <= box(2) .and. c(2) >= box(3) .and. &
+              c(2) <= box(4) .and. c(3) >= box(5) .and. c(3) <= box(6)) global%zone_block(z) = b
+        end associate
+      end do
+      if (global%zone_block(z) == 0) missing = missing + 1
+    end do
+    if (missing > 0) then
+      write(text, '(i0)') missing
+      call status%add('&block: box: '//trim(text)//' zones lie in no block''s box '// &
+          '(every zone needs a block)')
+    end if
+  end subroutine assign_blocks
+
+  !> Build the global mesh, check blocks and boundaries, partition, localise.
+  subroutine setup_mesh(config, global, mesh, bc, status)
+    type(config_t), intent(in) :: config
+    type(global_mesh_t), intent(inout) :: global
+    type(mesh_t), intent(inout) :: mesh
+    type(boundary_t), intent(inout) :: bc
+    type(status_t), intent(inout) :: status
+    integer(ik), allocatable :: part(:)
+    call mesh_make_box(config%box, global, status)
+    if (.not. status%ok()) return
+    call assign_blocks(config, global, status)
+    if (.not. status%ok()) return
+    allocate(part(global%nzone))
+    call partition_zones(global%nnode, global%connectivity, par_size(), part)
+    call mesh_build_local(global, part, mesh)
+    call boundary_setup(config%boundaries, global, mesh, bc, status)
+  end subroutine setup_mesh
+
+  !> Allocate the state and apply the initial conditions (positions from the
+  !> global mesh); nodal masses are the sums of corner masses m_z / 8.
+  subroutine setup_state(config, global, mesh, state, mz, status)
+    type(config_t), intent(in) :: config
+    type(global_mesh_t), intent(in) :: global
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_zones_t), intent(out) :: mz
+    type(status_t), intent(inout) :: status
+    integer, allocatable :: zone_material(:)
+    integer :: n, z, j
+    real(rk) :: m
+    call state_init(state, mesh%nnode, mesh%nzone, config%hydro%hourglass == HOURGLASS_STIFFNESS)
+    do n = 1, mesh%nnode
+      state%node_position(:, n) = global%coordinates(:, mesh%node_gid(n))
+    end do
+    allocate(zone_material(mesh%nzone))
+    do z = 1, mesh%nzone
+      zone_material(z) = config%blocks(mesh%zone_block(z))%material
+    end do
+    call material_zones_build(zone_material, size(config%materials), mz)
+    call initial_apply(config%regions, config%materials, zone_material, mesh, state, status)
+    if (.not. status%ok()) return
+    do n = 1, mesh%nnode_owned
+      m = 0.0_rk
+      do j = mesh%corner_start(n), mesh%corner_start(n + 1) - 1
+        m = m + 0.125_rk * state%zone_mass((mesh%corner_list(j) - 1) / 8 + 1)
+      end do
+      state%node_mass(n) = m
+    end do
+    call mesh%node_halo%exchange(state%node_velocity)
+  end subroutine setup_state
+
+end module app_setup

@@ -1,0 +1,72 @@
+!> impact3d: 3D staggered Lagrangian hydrocode with contact.
+!> Usage: impact3d [--check] [--restart dump.h5] deck.nml
+program impact3d
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+  use app_run, only: run_deck, EXIT_OK, EXIT_INPUT
+  use parallel_env, only: par_init, par_finalize, par_rank
+  implicit none
+  character(len=512) :: arg, deck, restart
+  integer :: i, nargs, code
+  logical :: check_only
+
+  call par_init()
+  deck = ''
+  restart = ''
+  check_only = .false.
+  code = EXIT_OK
+  nargs = command_argument_count()
+  i = 0
+  do while (i < nargs)
+    i = i + 1
+    call get_command_argument(i, arg)
+    select case (trim(arg))
+    case ('-h', '--help')
+      if (par_rank() == 0) write(output_unit, '(a)') &
+          'usage: impact3d [--check] [--restart dump.h5] deck.nml', &
+          '  --check      validate the deck and set up the mesh, run nothing', &
+          '  --restart F  continue from dump F (same deck and mesh)'
+      check_only = .true.
+      deck = '-'
+      exit
+    case ('--check')
+      check_only = .true.
+    case ('--restart')
+      i = i + 1
+      if (i > nargs) then
+        code = EXIT_INPUT
+        if (par_rank() == 0) write(error_unit, '(a)') 'impact3d: --restart needs a file name'
+      else
+        call get_command_argument(i, restart)
+      end if
+    case default
+      if (arg(1:1) == '-') then
+        code = EXIT_INPUT
+        if (par_rank() == 0) write(error_unit, '(a)') 'impact3d: unknown option '//trim(arg)
+      else if (len_trim(deck) > 0) then
+        code = EXIT_INPUT
+        if (par_rank() == 0) write(error_unit, '(a)') 'impact3d: only one deck, please'
+      else
+        deck = arg
+      end if
+    end select
+  end do
+  if (code == EXIT_OK .and. len_trim(deck) == 0) then
+    code = EXIT_INPUT
+    if (par_rank() == 0) write(error_unit, '(a)') &
+        'usage: impact3d [--check] [--restart dump.h5] deck.nml'
+  end if
+  if (code == EXIT_OK .and. deck /= '-') call run_deck(trim(deck), trim(restart), check_only, &
+      code)
+  call par_finalize()
+  ! Variable stop codes are Fortran 2018; the codes are few.
+  select case (code)
+  case (EXIT_OK)
+    continue
+  case (1)
+    error stop 1
+  case (2)
+    error stop 2
+  case default
+    error stop 3
+  end select
+end program impact3d

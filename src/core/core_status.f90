@@ -1,0 +1,43 @@
+!> Status object for anything input-driven: an error count and the messages,
+!> so that every problem is reported at once and the caller decides how to stop.
+module core_status
+  implicit none
+  private
+  public :: status_t
+
+  integer, parameter :: MAX_MESSAGES = 200
+
+  !> Accumulated problems; `count == 0` means success.
+  type, public :: status_t
+    integer :: count = 0 !< number of problems found
+    character(len=400) :: messages(MAX_MESSAGES) = '' !< their texts (first MAX_MESSAGES)
+  contains
+    procedure :: add => status_add
+    procedure :: ok => status_ok
+    procedure :: clear => status_clear
+  end type status_t
+
+contains
+
+  !> Record one problem.
+  subroutine status_add(this, text)
+    class(status_t), intent(inout) :: this
+    character(len=*), intent(in) :: text !< what is wrong, where, what would be valid
+    this%count = this%count + 1
+    if (this%count <= MAX_MESSAGES) this%messages(this%count) = text
+  end subroutine status_add
+
+  !> True when no problem was recorded.
+  logical function status_ok(this)
+    class(status_t), intent(in) :: this
+    status_ok = this%count == 0
+  end function status_ok
+
+  !> Forget every recorded problem.
+  subroutine status_clear(this)
+    class(status_t), intent(inout) :: this
+    this%count = 0
+    this%messages = ''
+  end subroutine status_clear
+
+end module core_status

@@ -1,0 +1,267 @@
+!> Boundary conditions on face sets: symmetry planes, prescribed velocity,
+!> applied pressure and free surfaces. Constraints act on owned nodes as
+!> v <- P v + v0 (P projects onto the free directions); applied pressure is an
+!> external nodal force gathered in a fixed order.
+module hydro_boundary
+  use core_kinds, only: rk
+  use core_status, only: status_t
+  use mesh_geometry, only: HEX_FACE_NODES, quad_vector_area, quad_node_area_vectors
+  use mesh_global, only: global_mesh_t, NAME_LEN
+  use mesh_local, only: mesh_t
+  implicit none
+  private
+  public :: boundary_setup, boundary_constrain, boundary_pressure_forces
+
+  integer, parameter, public :: BC_FREE = 0, BC_SYMMETRY = 1, BC_VELOCITY = 2, BC_PRESSURE = 3
+
+  !> One boundary condition as given in the deck.
+  type, public :: boundary_spec_t
+    character(len=NAME_LEN) :: set = '' !< face set name
+    integer :: kind = BC_FREE !< BC_* code
+    real(rk) :: velocity(3) = 0.0_rk !< prescribed velocity (BC_VELOCITY)
+    real(rk) :: pressure = 0.0_rk !< applied pressure (BC_PRESSURE)
+  end type boundary_spec_t
+
+  !> The conditions resolved on this rank's nodes.
+  type, public :: boundary_t
+    integer :: nconstrained = 0 !< owned nodes with a kinematic constraint
+    integer, allocatable :: node(:) !< their local indices
+    real(rk), allocatable :: projector(:, :, :) !< (3, 3, nconstrained)
+    real(rk), allocatable :: value(:, :) !< (3, nconstrained) prescribed part
+    integer :: nface = 0 !< local faces under applied pressure
+    integer, allocatable :: face_zone(:), face_local(:) !< zone and face 1..6
+    real(rk), allocatable :: face_pressure(:) !< applied pressure on each
+    real(rk), allocatable :: face_force(:, :, :) !< (3, 4, nface) work space
+    integer :: npnode = 0 !< owned nodes loaded by pressure faces
+    integer, allocatable :: pnode(:) !< their local indices
+    integer, allocatable :: pnode_start(:), pnode_list(:) !< CSR of 4 (face-1) + corner
+    real(rk), allocatable :: pnode_force(:, :) !< (3, npnode) external force of the stage
+  end type boundary_t
+
+contains
+
+  !> Resolve the specs on the local mesh. Symmetry normals come from the
+  !> global face set (the same on every rank); a symmetry set must be planar.
+  subroutine boundary_setup(specs, global, mesh, bc, status)
+    type(boundary_spec_t), intent(in) :: specs(:)
+    type(global_mesh_t), intent(in) :: global
+    type(mesh_t), intent(in) :: mesh
+    type(boundary_t), intent(inout) :: bc
+    type(status_t), intent(inout) :: status
+    real(rk), allocatable :: dir(:, :, :), target(:, :), normal(:, :)
+    integer, allocatable :: ndir(:), slot(:)
+    integer :: ib, s, f, z, k, n, i, j, nowned
+    real(rk) :: area(3), p(3, 4), total(3), d(3), tval, len_d
+    character(len=16) :: text
+
+    nowned = mesh%nnode_owned
+    allocate(normal(3, size(specs)))
+    normal = 0.0_rk
+    ! Set normals (global, so every rank agrees) and planarity.
+    do ib = 1, size(specs)
+      s = global%find_set(specs(ib)%set)
+      if (s == 0) then
+        call status%add('&boundary: set = '''//trim(specs(ib)%set)// &
+            ''': no such face set in the mesh')
+        cycle
+      end if
+      if (specs(ib)%kind /= BC_SYMMETRY) cycle
+      total = 0.0_rk
+      do f = global%set_start(s), global%set_start(s + 1) - 1
+        z = global%set_zone(f)
+        p = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, global%set_face(f)), z))
+        total = total + quad_vector_area(p)
+      end do
+      if (norm2(total) <= 0.0_rk) then
+        call status%add('&boundary: set = '''//trim(specs(ib)%set)// &
+            ''': symmetry set has no area')
+        cycle
+      end if
+      normal(:, ib) = total / norm2(total)
+      do f = global%set_start(s), global%set_start(s + 1) - 1
+        z = global%set_zone(f)
+        p = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, global%set_face(f)), z))
+        area = quad_vector_area(p)
+        if (dot_product(area, normal(:, ib)) < (1.0_rk - 1.0e-10_rk) * norm2(area)) then
+          write(text, '(i0)') f - global%set_start(s) + 1
+          call status%add('&boundary: set = '''//trim(specs(ib)%set)//''': type = ''symmetry'''// &
+              ' needs a plane, but face '//trim(text)//' is not in the plane of the set')
+          exit
+        end if
+      end do
+    end do
+    if (.not. status%ok()) return
+
+    ! Kinematic constraints: velocity directions first, then symmetry normals.
+    allocate(dir(3, 3, nowned), target(3, nowned), ndir(nowned))
+    ndir = 0
+    do j = 1, 2
+      do ib = 1, size(specs)
+        if (j == 1 .and. specs(ib)%kind /= BC_VELOCITY) cycle
+        if (j == 2 .and. specs(ib)%kind /= BC_SYMMETRY) cycle
+        s = set_index(mesh, specs(ib)%set)
+        do f = mesh%set_start(s), mesh%set_start(s + 1) - 1
+          do k = 1, 4
+            n = mesh%zone_node(HEX_FACE_NODES(k, mesh%set_face(f)), mesh%set_zone(f))
+            if (n > nowned) cycle
+            if (j == 1) then
+              do i = 1, 3
+                d = 0.0_rk
+                d(i) = 1.0_rk
+                call add_direction(n, d, specs(ib)%velocity(i))
+              end do
+            else
+              call add_direction(n, normal(:, ib), 0.0_rk)
+            end if
+          end do
+        end do
+      end do
+    end do
+    bc%nconstrained = count(ndir > 0)
+    allocate(bc%node(bc%nconstrained), bc%projector(3, 3, bc%nconstrained))
+    allocate(bc%value(3, bc%nconstrained))
+    k = 0
+    do n = 1, nowned
+      if (ndir(n) == 0) cycle
+      k = k + 1
+      bc%node(k) = n
+      bc%projector(:, :, k) = 0.0_rk
+      bc%value(:, k) = 0.0_rk
+      do i = 1, 3
+        bc%projector(i, i, k) = 1.0_rk
+      end do
+      do i = 1, ndir(n)
+        do j = 1, 3
+          bc%projector(:, j, k) = bc%projector(:, j, k) - dir(:, i, n) * dir(j, i, n)
+        end do
+        bc%value(:, k) = bc%value(:, k) + target(i, n) * dir(:, i, n)
+      end do
+    end do
+
+    ! Applied pressure: local faces, and the owned nodes they load.
+    bc%nface = 0
+    do ib = 1, size(specs)
+      if (specs(ib)%kind /= BC_PRESSURE) cycle
+      s = set_index(mesh, specs(ib)%set)
+      bc%nface = bc%nface + mesh%set_start(s + 1) - mesh%set_start(s)
+    end do
+    allocate(bc%face_zone(bc%nface), bc%face_local(bc%nface), bc%face_pressure(bc%nface))
+    allocate(bc%face_force(3, 4, bc%nface))
+    allocate(slot(max(1, mesh%nnode)))
+    slot = 0
+    i = 0
+    do ib = 1, size(specs)
+      if (specs(ib)%kind /= BC_PRESSURE) cycle
+      s = set_index(mesh, specs(ib)%set)
+      do f = mesh%set_start(s), mesh%set_start(s + 1) - 1
+        i = i + 1
+        bc%face_zone(i) = mesh%set_zone(f)
+        bc%face_local(i) = mesh%set_face(f)
+        bc%face_pressure(i) = specs(ib)%pressure
+        do k = 1, 4
+          n = mesh%zone_node(HEX_FACE_NODES(k, mesh%set_face(f)), mesh%set_zone(f))
+          if (n <= nowned) slot(n) = slot(n) + 1
+        end do
+      end do
+    end do
+    bc%npnode = count(slot > 0)
+    allocate(bc%pnode(bc%npnode), bc%pnode_start(bc%npnode + 1))
+    allocate(bc%pnode_list(max(1, sum(slot))), bc%pnode_force(3, bc%npnode))
+    k = 0
+    bc%pnode_start(1) = 1
+    do n = 1, mesh%nnode
+      if (slot(n) == 0) cycle
+      k = k + 1
+      bc%pnode(k) = n
+      bc%pnode_start(k + 1) = bc%pnode_start(k) + slot(n)
+      slot(n) = k
+    end do
+    ! Fill in face order (global set order), so every rank sums alike.
+    deallocate(ndir)
+    allocate(ndir(max(1, bc%npnode)))
+    ndir = 0
+    do i = 1, bc%nface
+      do k = 1, 4
+        n = mesh%zone_node(HEX_FACE_NODES(k, bc%face_local(i)), bc%face_zone(i))
+        if (n > nowned) cycle
+        j = slot(n)
+        bc%pnode_list(bc%pnode_start(j) + ndir(j)) = 4 * (i - 1) + k
+        ndir(j) = ndir(j) + 1
+      end do
+    end do
+
+  contains
+
+    subroutine add_direction(node, dvec, value)
+      integer, intent(in) :: node
+      real(rk), intent(in) :: dvec(3), value
+      integer :: m
+      d = dvec
+      tval = value
+      do m = 1, ndir(node)
+        tval = tval - dot_product(dvec, dir(:, m, node)) * target(m, node)
+        d = d - dot_product(dvec, dir(:, m, node)) * dir(:, m, node)
+      end do
+      len_d = norm2(d)
+      if (len_d < 1.0e-8_rk .or. ndir(node) == 3) return
+      ndir(node) = ndir(node) + 1
+      dir(:, ndir(node), node) = d / len_d
+      target(ndir(node), node) = tval / len_d
+    end subroutine add_direction
+
+  end subroutine boundary_setup
+
+  integer function set_index(mesh, name) result(s)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: name
+    do s = 1, mesh%nset
+      if (trim(mesh%set_name(s)) == trim(name)) return
+    end do
+    s = 0
+  end function set_index
+
+  !> Impose the kinematic constraints on a velocity (or acceleration, with
+  !> with_value = .false.) field of the owned nodes.
+  subroutine boundary_constrain(bc, v, with_value)
+    type(boundary_t), intent(in) :: bc
+    real(rk), intent(inout) :: v(:, :)
+    logical, intent(in) :: with_value
+    integer :: k, n
+    real(rk) :: w(3)
+    do k = 1, bc%nconstrained
+      n = bc%node(k)
+      w = matmul(bc%projector(:, :, k), v(:, n))
+      if (with_value) w = w + bc%value(:, k)
+      v(:, n) = w
+    end do
+  end subroutine boundary_constrain
+
+  !> Add the applied-pressure forces at positions x to the owned node forces,
+  !> keeping the external part in bc%pnode_force.
+  subroutine boundary_pressure_forces(bc, mesh, x, force)
+    type(boundary_t), intent(inout) :: bc
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :)
+    real(rk), intent(inout) :: force(:, :)
+    integer :: i, k, j, c
+    real(rk) :: p(3, 4), a(3, 4), f(3)
+    do i = 1, bc%nface
+      do k = 1, 4
+        p(:, k) = x(:, mesh%zone_node(HEX_FACE_NODES(k, bc%face_local(i)), bc%face_zone(i)))
+      end do
+      call quad_node_area_vectors(p, a)
+      bc%face_force(:, :, i) = -bc%face_pressure(i) * a
+    end do
+    do j = 1, bc%npnode
+      f = 0.0_rk
+      do c = bc%pnode_start(j), bc%pnode_start(j + 1) - 1
+        i = (bc%pnode_list(c) - 1) / 4 + 1
+        k = mod(bc%pnode_list(c) - 1, 4) + 1
+        f = f + bc%face_force(:, k, i)
+      end do
+      bc%pnode_force(:, j) = f
+      force(:, bc%pnode(j)) = force(:, bc%pnode(j)) + f
+    end do
+  end subroutine boundary_pressure_forces
+
+end module hydro_boundary

@@ -1,0 +1,171 @@
+!> Stage drivers of the predictor-corrector cycle: they unpack the types,
+!> call the kernels, refresh halos and gather node forces. The cycle itself
+!> (which stages, in which order, and where contact goes) is in src/app.
+module hydro_driver
+  use core_kinds, only: rk
+  use mesh_local, only: mesh_t
+  use material_table, only: material_t, material_eos
+  use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
+  use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
+      node_gather_forces, zone_time_step
+  use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces
+  implicit none
+  private
+  public :: hydro_zone_update, hydro_forces, hydro_energy_update, hydro_velocity_update
+  public :: hydro_time_step, hydro_energies, material_zones_build
+
+  !> Zones of each material (local indices), for the EOS loops.
+  type, public :: material_zones_t
+    integer, allocatable :: start(:) !< CSR over materials
+    integer, allocatable :: list(:) !< local zones
+  end type material_zones_t
+
+contains
+
+  !> Group the local zones by material.
+  subroutine material_zones_build(zone_material, nmaterial, mz)
+    integer, intent(in) :: zone_material(:)
+    integer, intent(in) :: nmaterial
+    type(material_zones_t), intent(out) :: mz
+    integer :: m, z, k
+    allocate(mz%start(nmaterial + 1), mz%list(size(zone_material)))
+    k = 0
+    mz%start(1) = 1
+    do m = 1, nmaterial
+      do z = 1, size(zone_material)
+        if (zone_material(z) == m) then
+          k = k + 1
+          mz%list(k) = z
+        end if
+      end do
+      mz%start(m + 1) = k + 1
+    end do
+  end subroutine material_zones_build
+
+  !> Geometry, density, EOS and viscosity of every local zone at positions x
+  !> and velocities v. bad = first local zone with a non-positive volume.
+  subroutine hydro_zone_update(mesh, state, materials, mz, opt, x, v, bad)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_t), intent(in) :: materials(:)
+    type(material_zones_t), intent(in) :: mz
+    type(hydro_options_t), intent(in) :: opt
+    real(rk), intent(in) :: x(:, :), v(:, :)
+    integer, intent(out) :: bad
+    integer :: z, m
+    call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+        state%zone_bmatrix, state%zone_length, state%zone_divergence, bad)
+    do z = 1, mesh%nzone
+      ! A tangled zone keeps its last density; the run stops at the end of the cycle.
+      if (state%zone_volume(z) > 0.0_rk) state%zone_density(z) = state%zone_mass(z) / &
+          state%zone_volume(z)
+    end do
+    do m = 1, size(materials)
+      call material_eos(materials(m), mz%list(mz%start(m):mz%start(m + 1) - 1), &
+          state%zone_density, state%zone_energy, state%zone_pressure, state%zone_sound_speed)
+    end do
+    call zone_viscosity(mesh%nzone, opt%q_linear, opt%q_quadratic, state%zone_density, &
+        state%zone_sound_speed, state%zone_length, state%zone_divergence, state%zone_viscosity)
+  end subroutine hydro_zone_update
+
+  !> Corner forces of every local zone and the force of every owned node
+  !> (internal + applied pressure) at positions x, velocities v.
+  subroutine hydro_forces(mesh, state, opt, bc, x, v, stage_dt)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    type(hydro_options_t), intent(in) :: opt
+    type(boundary_t), intent(inout) :: bc
+    real(rk), intent(in) :: x(:, :), v(:, :)
+    real(rk), intent(in) :: stage_dt !< 0 in the predictor, dt in the corrector
+    real(rk) :: unused(3, 4, 1)
+    if (opt%hourglass == HOURGLASS_STIFFNESS) then
+      call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+          state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
+          state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
+          state%zone_hourglass, state%zone_hourglass_new, state%corner_force)
+    else
+      call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+          state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
+          state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
+          unused, unused, state%corner_force)
+    end if
+    call node_gather_forces(mesh%nnode_owned, mesh%corner_start, mesh%corner_list, &
+        state%corner_force, state%node_force)
+    call boundary_pressure_forces(bc, mesh, x, state%node_force)
+  end subroutine hydro_forces
+
+  !> e = e_old - step * (work of the corner forces on v) / m, every local zone.
+  subroutine hydro_energy_update(mesh, state, v, step)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    real(rk), intent(in) :: v(:, :)
+    real(rk), intent(in) :: step
+    integer :: z
+    call zone_work(mesh%nzone, mesh%zone_node, state%corner_force, v, state%zone_energy)
+    do z = 1, mesh%nzone
+      state%zone_energy(z) = state%zone_energy_old(z) - step * state%zone_energy(z) / &
+          state%zone_mass(z)
+    end do
+  end subroutine hydro_energy_update
+
+  !> v_new = v_old + step F / M on owned nodes, constrained; returns the
+  !> boundary work of the step for the final update (diagnostic).
+  subroutine hydro_velocity_update(mesh, state, bc, step, v_new, work)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    type(boundary_t), intent(in) :: bc
+    real(rk), intent(in) :: step
+    real(rk), intent(inout) :: v_new(:, :)
+    real(rk), intent(out) :: work
+    integer :: n, k
+    real(rk) :: vavg(3)
+    do n = 1, mesh%nnode_owned
+      v_new(:, n) = state%node_velocity_old(:, n) + step * state%node_force(:, n) / &
+          state%node_mass(n)
+    end do
+    call boundary_constrain(bc, v_new, .true.)
+    ! Work of the constraint reactions and of the applied pressure.
+    work = 0.0_rk
+    do k = 1, bc%nconstrained
+      n = bc%node(k)
+      vavg = 0.5_rk * (state%node_velocity_old(:, n) + v_new(:, n))
+      work = work + dot_product(state%node_mass(n) * (v_new(:, n) - &
+          state%node_velocity_old(:, n)) - step * state%node_force(:, n), vavg)
+    end do
+    do k = 1, bc%npnode
+      n = bc%pnode(k)
+      vavg = 0.5_rk * (state%node_velocity_old(:, n) + v_new(:, n))
+      work = work + step * dot_product(bc%pnode_force(:, k), vavg)
+    end do
+  end subroutine hydro_velocity_update
+
+  !> Stability limit over owned zones (local), the zone and the reason.
+  subroutine hydro_time_step(mesh, state, opt, dt, zone, reason)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    type(hydro_options_t), intent(in) :: opt
+    real(rk), intent(out) :: dt
+    integer, intent(out) :: zone, reason
+    call zone_time_step(mesh%nzone_owned, opt%cfl, opt%dvol_max, opt%q_linear, &
+        opt%q_quadratic, state%zone_length, state%zone_sound_speed, state%zone_divergence, &
+        dt, zone, reason)
+  end subroutine hydro_time_step
+
+  !> Local sums over owned items: internal and kinetic energy, momentum.
+  subroutine hydro_energies(mesh, state, sums)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    real(rk), intent(out) :: sums(5) !< internal, kinetic, momentum x, y, z
+    integer :: n, z
+    sums = 0.0_rk
+    do z = 1, mesh%nzone_owned
+      sums(1) = sums(1) + state%zone_mass(z) * state%zone_energy(z)
+    end do
+    do n = 1, mesh%nnode_owned
+      sums(2) = sums(2) + 0.5_rk * state%node_mass(n) * dot_product(state%node_velocity(:, n), &
+          state%node_velocity(:, n))
+      sums(3:5) = sums(3:5) + state%node_mass(n) * state%node_velocity(:, n)
+    end do
+  end subroutine hydro_energies
+
+end module hydro_driver

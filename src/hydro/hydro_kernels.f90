@@ -1,0 +1,202 @@
+!> Zone and node kernels of the compatible staggered scheme (plain arrays,
+!> no MPI, no I/O). The drivers in hydro_cycle call them stage by stage.
+module hydro_kernels
+  use core_kinds, only: rk
+  use mesh_geometry, only: hex_volume_gradient, hex_characteristic_length, HOURGLASS_BASE
+  use hydro_state, only: HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
+  implicit none
+  private
+  public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
+  public :: node_gather_forces, zone_time_step
+
+  integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
+
+contains
+
+  !> Volume, B-matrix, characteristic length and velocity divergence of zones
+  !> 1..n. bad returns the first zone with a non-positive or NaN volume (0 = none).
+  subroutine zone_kinematics(n, zone_node, x, v, volume, b, length, divergence, bad)
+    integer, intent(in) :: n
+    integer, intent(in) :: zone_node(:, :)
+    real(rk), intent(in) :: x(:, :), v(:, :)
+    real(rk), intent(inout) :: volume(:), b(:, :, :), length(:), divergence(:)
+    integer, intent(out) :: bad
+    real(rk) :: xz(3, 8), vol, dvdt
+    integer :: z, k, node
+    bad = 0
+    do z = 1, n
+      do k = 1, 8
+        node = zone_node(k, z)
+        xz(:, k) = x(:, node)
+      end do
+      call hex_volume_gradient(xz, vol, b(:, :, z))
+      volume(z) = vol
+      if (.not. (vol > 0.0_rk)) then
+        if (bad == 0) bad = z
+        length(z) = 0.0_rk
+        divergence(z) = 0.0_rk
+        cycle
+      end if
+      length(z) = hex_characteristic_length(xz, vol)
+      dvdt = 0.0_rk
+      do k = 1, 8
+        node = zone_node(k, z)
+        dvdt = dvdt + b(1, k, z) * v(1, node) + b(2, k, z) * v(2, node) + b(3, k, z) * v(3, node)
+      end do
+      divergence(z) = dvdt / vol
+    end do
+  end subroutine zone_kinematics
+
+  !> Quadratic + linear artificial viscosity, active in compression only:
+  !> q = rho (C2 L^2 D^2 + C1 c L |D|) for D = div v < 0.
+  subroutine zone_viscosity(n, q_linear, q_quadratic, density, sound_speed, length, &
+      divergence, q)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: q_linear, q_quadratic
+    real(rk), intent(in) :: density(:), sound_speed(:), length(:), divergence(:)
+    real(rk), intent(inout) :: q(:)
+    integer :: z
+    real(rk) :: du
+    do z = 1, n
+      if (divergence(z) < 0.0_rk) then
+        du = length(z) * divergence(z)
+        q(z) = density(z) * (q_quadratic * du * du - q_linear * sound_speed(z) * du)
+      else
+        q(z) = 0.0_rk
+      end if
+    end do
+  end subroutine zone_viscosity
+
+  !> Corner forces F(:, k, z) = (p + q) dV/dx_k + Flanagan-Belytschko hourglass
+  !> forces. With stiffness hourglass control the generalised hourglass stress
+  !> used is hg + stage_dt/2 * rate, and hg_new = hg + stage_dt * rate.
+  subroutine zone_corner_forces(n, zone_node, x, v, volume, b, pressure, q, density, &
+      sound_speed, hourglass, coefficient, stage_dt, hg, hg_new, force)
+    integer, intent(in) :: n
+    integer, intent(in) :: zone_node(:, :)
+    real(rk), intent(in) :: x(:, :), v(:, :), volume(:), b(:, :, :)
+    real(rk), intent(in) :: pressure(:), q(:), density(:), sound_speed(:)
+    integer, intent(in) :: hourglass !< HOURGLASS_* type
+    real(rk), intent(in) :: coefficient !< hourglass coefficient
+    real(rk), intent(in) :: stage_dt !< 0 in the predictor, dt in the corrector
+    real(rk), intent(in) :: hg(:, :, :) !< stiffness state at t^n (unused otherwise)
+    real(rk), intent(inout) :: hg_new(:, :, :) !< stiffness state at t^n+1
+    real(rk), intent(inout) :: force(:, :, :)
+    real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
+    real(rk) :: ptot, scale, rvol
+    integer :: z, k, m, node
+    do z = 1, n
+      ptot = pressure(z) + q(z)
+      do k = 1, 8
+        force(:, k, z) = ptot * b(:, k, z)
+      end do
+      if (hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS) then
+        do k = 1, 8
+          node = zone_node(k, z)
+          xz(:, k) = x(:, node)
+          vz(:, k) = v(:, node)
+        end do
+        ! gamma_m = h_m - (h_m . x_j) b_j / V  (orthogonal to linear fields)
+        hx = matmul(xz, HOURGLASS_BASE)
+        rvol = 1.0_rk / volume(z)
+        do m = 1, 4
+          do k = 1, 8
+            gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * b(1, k, z) &
+                + hx(2, m) * b(2, k, z) + hx(3, m) * b(3, k, z))
+          end do
+        end do
+        rate = matmul(vz, gam)
+        if (hourglass == HOURGLASS_VISCOUS) then
+          scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)
+          stress = scale * rate
+        else
+          scale = 0.25_rk * coefficient * density(z) * sound_speed(z)**2 * volume(z)**(1.0_rk / 3.0_rk)
+          stress = hg(:, :, z) + 0.5_rk * stage_dt * scale * rate
+          hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale * rate
+        end if
+        do k = 1, 8
+          do m = 1, 4
+            force(:, k, z) = force(:, k, z) - gam(k, m) * stress(:, m)
+          end do
+        end do
+      end if
+    end do
+  end subroutine zone_corner_forces
+
+  !> Rate of work of the corner forces of zones 1..n on the node velocities v:
+  !> work(z) = sum_k F(:, k, z) . v(:, node k).
+  subroutine zone_work(n, zone_node, force, v, work)
+    integer, intent(in) :: n
+    integer, intent(in) :: zone_node(:, :)
+    real(rk), intent(in) :: force(:, :, :), v(:, :)
+    real(rk), intent(inout) :: work(:)
+    integer :: z, k, node
+    real(rk) :: w
+    do z = 1, n
+      w = 0.0_rk
+      do k = 1, 8
+        node = zone_node(k, z)
+        w = w + force(1, k, z) * v(1, node) + force(2, k, z) * v(2, node) &
+            + force(3, k, z) * v(3, node)
+      end do
+      work(z) = w
+    end do
+  end subroutine zone_work
+
+  !> Node force = sum of its corner forces, in the fixed order of the corner lists.
+  subroutine node_gather_forces(n, corner_start, corner_list, corner_force, force)
+    integer, intent(in) :: n
+    integer, intent(in) :: corner_start(:), corner_list(:)
+    real(rk), intent(in) :: corner_force(:, :, :)
+    real(rk), intent(inout) :: force(:, :)
+    integer :: i, j, c, k, z
+    real(rk) :: f(3)
+    do i = 1, n
+      f = 0.0_rk
+      do j = corner_start(i), corner_start(i + 1) - 1
+        c = corner_list(j) - 1
+        z = c / 8 + 1
+        k = mod(c, 8) + 1
+        f = f + corner_force(:, k, z)
+      end do
+      force(:, i) = f
+    end do
+  end subroutine node_gather_forces
+
+  !> Smallest stable step over zones 1..n: CFL with the viscous signal speed
+  !> b = C1 c + C2 L |D| in compression, dt = cfl L / (b + sqrt(b^2 + c^2)),
+  !> and the relative volume change limit dt = dvol_max / |D|.
+  subroutine zone_time_step(n, cfl, dvol_max, q_linear, q_quadratic, length, sound_speed, &
+      divergence, dt, zone, reason)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: cfl, dvol_max, q_linear, q_quadratic
+    real(rk), intent(in) :: length(:), sound_speed(:), divergence(:)
+    real(rk), intent(out) :: dt !< smallest step (huge if n = 0)
+    integer, intent(out) :: zone !< the zone that sets it
+    integer, intent(out) :: reason !< DT_CFL or DT_VOLUME
+    integer :: z
+    real(rk) :: bq, c, trial
+    dt = huge(1.0_rk)
+    zone = 0
+    reason = DT_CFL
+    do z = 1, n
+      c = sound_speed(z)
+      bq = 0.0_rk
+      if (divergence(z) < 0.0_rk) bq = q_linear * c - q_quadratic * length(z) * divergence(z)
+      if (bq + c > 0.0_rk) then
+        trial = cfl * length(z) / (bq + sqrt(bq * bq + c * c))
+        if (trial < dt) then
+          dt = trial
+          zone = z
+          reason = DT_CFL
+        end if
+      end if
+      if (abs(divergence(z)) * dt > dvol_max) then
+        dt = dvol_max / abs(divergence(z))
+        zone = z
+        reason = DT_VOLUME
+      end if
+    end do
+  end subroutine zone_time_step
+
+end module hydro_kernels

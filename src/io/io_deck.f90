@@ -1,0 +1,681 @@
+!> The input deck: namelist groups &control, &hydro, &mesh, &material,
+!> &block, &region, &boundary and &output. Rank 0 reads the file and
+!> broadcasts its text; every rank then parses the same text, and rank 0
+!> reports every problem found (group, key, reason) before any work starts.
+module io_deck
+  use core_kinds, only: rk
+  use core_status, only: status_t
+  use io_deck_scan, only: deck_scan, group_instance_t, to_lower, LINE_LEN, KEY_LEN
+  use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
+  use material_table, only: material_t, EOS_IDEAL_GAS
+  use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
+  use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE
+  use hydro_initial, only: region_t, UNSET
+  use parallel_env, only: par_rank, par_bcast
+  implicit none
+  private
+  public :: deck_read, deck_known_keys
+
+  integer, parameter, public :: DECK_VERSION = 1
+  integer, parameter, public :: PATH_LEN = 256
+  integer, parameter :: NGROUP_KNOWN = 8
+  character(len=*), parameter :: GROUP_NAMES(NGROUP_KNOWN) = [character(len=8) :: &
+      'control', 'hydro', 'mesh', 'material', 'block', 'region', 'boundary', 'output']
+
+  !> A block: zones whose centroid lies in box, made of one material.
+  type, public :: block_spec_t
+    character(len=NAME_LEN) :: name = ''
+    integer :: material = 0 !< index into config%materials
+    real(rk) :: box(6) = [-huge(1.0_rk), huge(1.0_rk), -huge(1.0_rk), huge(1.0_rk), &
+        -huge(1.0_rk), huge(1.0_rk)]
+  end type block_spec_t
+
+  !> Output controls.
+  type, public :: output_options_t
+    character(len=PATH_LEN) :: directory = '.' !< where dumps and history go
+    character(len=NAME_LEN) :: prefix = 'dump' !< dump file prefix
+    real(rk) :: dump_interval = 0.0_rk !< simulated time between dumps (0 = none)
+    integer :: dump_cycles = 0 !< cycles between dumps (0 = none)
+    integer :: status_every = 10 !< cycles between status lines
+    integer :: history_every = 1 !< cycles between history lines
+  end type output_options_t
+
+  !> Everything the deck says.
+  type, public :: config_t
+    character(len=80) :: title = ''
+    real(rk) :: t_end = UNSET
+    integer :: max_cycles = 10000000
+    character(len=PATH_LEN) :: restart = ''
+    type(hydro_options_t) :: hydro
+    character(len=16) :: mesh_type = 'box'
+    type(box_spec_t) :: box
+    type(material_t), allocatable :: materials(:)
+    type(block_spec_t), allocatable :: blocks(:)
+    type(region_t), allocatable :: regions(:)
+    type(boundary_spec_t), allocatable :: boundaries(:)
+    type(output_options_t) :: output
+  end type config_t
+
+contains
+
+  !> Known keys of a group (the deck reference in docs is checked against it).
+  function deck_known_keys(group) result(keys)
+    character(len=*), intent(in) :: group
+    character(len=KEY_LEN), allocatable :: keys(:)
+    select case (group)
+    case ('control')
+      keys = [character(len=KEY_LEN) :: 'title', 't_end', 'max_cycles', 'deck_version', &
+          'restart', 'cfl', 'dt_initial', 'dt_max', 'dt_min', 'dt_growth', 'dvol_max']
+    case ('hydro')
+      keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'hourglass', &
+          'hourglass_coefficient']
+    case ('mesh')
+      keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
+          'ratio_y', 'ratio_z', 'skew_amplitude']
+    case ('material')
+      keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma']
+    case ('block')
+      keys = [character(len=KEY_LEN) :: 'name', 'material', 'box']
+    case ('region')
+      keys = [character(len=KEY_LEN) :: 'block', 'box', 'density', 'energy', 'pressure', &
+          'velocity', 'radial_u0', 'radial_r0', 'radial_k', 'center', 'deposit_energy', &
+          'deposit_point']
+    case ('boundary')
+      keys = [character(len=KEY_LEN) :: 'set', 'type', 'velocity', 'pressure']
+    case ('output')
+      keys = [character(len=KEY_LEN) :: 'directory', 'prefix', 'dump_interval', &
+          'dump_cycles', 'status_every', 'history_every']
+    case default
+      allocate(keys(0))
+    end select
+  end function deck_known_keys
+
+  !> Read, check and distribute the deck. On return status%count is the same
+  !> on every rank; rank 0 holds the messages.
+  subroutine deck_read(path, config, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(out) :: config
+    type(status_t), intent(inout) :: status
+    character(len=LINE_LEN), allocatable :: lines(:)
+    type(group_instance_t), allocatable :: groups(:)
+    integer :: nline, ngroup, ig, ik, k, counts(NGROUP_KNOWN)
+    character(len=KEY_LEN), allocatable :: known(:)
+    logical :: found
+
+    call read_lines(path, lines, nline, status)
+    if (.not. status%ok()) return
+    call deck_scan(lines, groups, ngroup, status)
+
+    ! Unknown groups and keys, every one of them.
+    counts = 0
+    do ig = 1, ngroup
+      found = .false.
+      do k = 1, NGROUP_KNOWN
+        if (trim(groups(ig)%name) == trim(GROUP_NAMES(k))) then
+          found = .true.
+          counts(k) = counts(k) + 1
+        end if
+      end do
+      if (.not. found) then
+        call status%add('&'//trim(groups(ig)%name)//': unknown group (valid groups: '// &
+            join(GROUP_NAMES)//')')
+        cycle
+      end if
+      known = deck_known_keys(trim(groups(ig)%name))
+      do ik = 1, groups(ig)%nkey
+        if (.not. any(known == groups(ig)%key(ik))) call status%add('&'// &
+            trim(groups(ig)%name)//': '//trim(groups(ig)%key(ik))// &
+            ': unknown key (valid keys: '//join(known)//')')
+      end do
+    end do
+    do k = 1, NGROUP_KNOWN
+      select case (GROUP_NAMES(k))
+      case ('control', 'mesh')
+        if (counts(k) == 0) call status%add('&'//trim(GROUP_NAMES(k))// &
+            ': required group is missing')
+        if (counts(k) > 1) call status%add('&'//trim(GROUP_NAMES(k))// &
+            ': group given more than once')
+      case ('hydro', 'output')
+        if (counts(k) > 1) call status%add('&'//trim(GROUP_NAMES(k))// &
+            ': group given more than once')
+      case ('material', 'block', 'region')
+        if (counts(k) == 0) call status%add('&'//trim(GROUP_NAMES(k))// &
+            ': at least one is required')
+      end select
+    end do
+    if (.not. status%ok()) return
+
+    allocate(config%materials(counts(4)), config%blocks(counts(5)), config%regions(counts(6)))
+    allocate(config%boundaries(counts(7)))
+    counts = 0
+    do ig = 1, ngroup
+      associate(sect => lines(groups(ig)%first_line:groups(ig)%last_line))
+        select case (trim(groups(ig)%name))
+        case ('control')
+          call read_control(sect, config, status)
+        case ('hydro')
+          call read_hydro(sect, config%hydro, status)
+        case ('mesh')
+          call read_mesh(sect, config, status)
+        case ('material')
+          counts(4) = counts(4) + 1
+          call read_material(sect, counts(4), config%materials(counts(4)), status)
+        case ('output')
+          call read_output(sect, config%output, status)
+        end select
+      end associate
+    end do
+    ! Groups that refer to others by name come after those are known.
+    call check_material_names(config, status)
+    do ig = 1, ngroup
+      associate(sect => lines(groups(ig)%first_line:groups(ig)%last_line))
+        select case (trim(groups(ig)%name))
+        case ('block')
+          counts(5) = counts(5) + 1
+          call read_block(sect, counts(5), config, status)
+        case ('region')
+          counts(6) = counts(6) + 1
+          call read_region(sect, counts(6), config, status)
+        case ('boundary')
+          counts(7) = counts(7) + 1
+          call read_boundary(sect, counts(7), config%boundaries(counts(7)), status)
+        end select
+      end associate
+    end do
+  end subroutine deck_read
+
+  function join(words) result(text)
+    character(len=*), intent(in) :: words(:)
+    character(len=:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, size(words)
+      if (i > 1) text = text//', '
+      text = text//trim(words(i))
+    end do
+  end function join
+
+  !> Rank 0 reads the file; every rank gets the lines.
+  subroutine read_lines(path, lines, nline, status)
+    character(len=*), intent(in) :: path
+    character(len=LINE_LEN), allocatable, intent(out) :: lines(:)
+    integer, intent(out) :: nline
+    type(status_t), intent(inout) :: status
+    integer :: unit, ios, i
+    character(len=LINE_LEN) :: buffer
+    character(len=256) :: msg
+    logical :: exists
+
+    nline = -1
+    if (par_rank() == 0) then
+      inquire(file=path, exist=exists)
+      if (.not. exists) then
+        nline = -1
+      else
+        open(newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
+        if (ios /= 0) then
+          nline = -2
+        else
+          nline = 0
+          do
+            read(unit, '(a)', iostat=ios) buffer
+            if (ios /= 0) exit
+            nline = nline + 1
+          end do
+          rewind(unit)
+          allocate(lines(nline))
+          do i = 1, nline
+            read(unit, '(a)') lines(i)
+          end do
+          close(unit)
+        end if
+      end if
+    end if
+    call par_bcast(nline)
+    if (nline == -1) then
+      call status%add('deck: file '''//trim(path)//''' does not exist')
+      return
+    else if (nline == -2) then
+      call status%add('deck: file '''//trim(path)//''' cannot be opened')
+      return
+    end if
+    if (.not. allocated(lines)) allocate(lines(nline))
+    if (nline > 0) call par_bcast(lines)
+  end subroutine read_lines
+
+  subroutine nml_error(group, ios, msg, status)
+    character(len=*), intent(in) :: group, msg
+    integer, intent(in) :: ios
+    type(status_t), intent(inout) :: status
+    if (ios /= 0) call status%add('&'//group//': cannot read the group: '//trim(msg))
+  end subroutine nml_error
+
+  subroutine read_control(sect, config, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    type(config_t), intent(inout) :: config
+    type(status_t), intent(inout) :: status
+    character(len=80) :: title
+    character(len=PATH_LEN) :: restart
+    real(rk) :: t_end, cfl, dt_initial, dt_max, dt_min, dt_growth, dvol_max
+    integer :: max_cycles, deck_version, ios
+    character(len=256) :: msg
+    namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
+        dt_max, dt_min, dt_growth, dvol_max
+
+    title = config%title
+    t_end = config%t_end
+    max_cycles = config%max_cycles
+    deck_version = DECK_VERSION
+    restart = ''
+    cfl = config%hydro%cfl
+    dt_initial = config%hydro%dt_initial
+    dt_max = config%hydro%dt_max
+    dt_min = config%hydro%dt_min
+    dt_growth = config%hydro%dt_growth
+    dvol_max = config%hydro%dvol_max
+    read(sect, nml=control, iostat=ios, iomsg=msg)
+    call nml_error('control', ios, msg, status)
+    if (ios /= 0) return
+    if (deck_version /= DECK_VERSION) call status%add('&control: deck_version: this code '// &
+        'reads deck version 1 only')
+    if (t_end == UNSET) then
+      call status%add('&control: t_end: required (end time of the run, > 0)')
+    else if (.not. (t_end > 0.0_rk)) then
+      call status%add('&control: t_end: must be > 0')
+    end if
+    if (max_cycles < 1) call status%add('&control: max_cycles: must be >= 1')
+    if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
+        'in (0, 1]')
+    if (dt_initial < 0.0_rk) call status%add('&control: dt_initial: must be >= 0 '// &
+        '(0 = from the stability limit)')
+    if (.not. (dt_max > 0.0_rk)) call status%add('&control: dt_max: must be > 0')
+    if (.not. (dt_min > 0.0_rk)) call status%add('&control: dt_min: must be > 0')
+    if (dt_min > 0.0_rk .and. dt_max > 0.0_rk .and. dt_min >= dt_max) call status%add( &
+        '&control: dt_min: must be smaller than dt_max')
+    if (dt_initial > 0.0_rk .and. dt_initial < dt_min) call status%add('&control: '// &
+        'dt_initial: must be >= dt_min')
+    if (.not. (dt_growth >= 1.0_rk)) call status%add('&control: dt_growth: must be >= 1')
+    if (.not. (dvol_max > 0.0_rk .and. dvol_max < 1.0_rk)) call status%add('&control: '// &
+        'dvol_max: must be in (0, 1)')
+    config%title = title
+    config%t_end = t_end
+    config%max_cycles = max_cycles
+    config%restart = restart
+    config%hydro%cfl = cfl
+    config%hydro%dt_initial = dt_initial
+    config%hydro%dt_max = dt_max
+    config%hydro%dt_min = dt_min
+    config%hydro%dt_growth = dt_growth
+    config%hydro%dvol_max = dvol_max
+  end subroutine read_control
+
+  subroutine read_hydro(sect, opt, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    type(hydro_options_t), intent(inout) :: opt
+    type(status_t), intent(inout) :: status
+    real(rk) :: q_linear, q_quadratic, hourglass_coefficient
+    character(len=32) :: hourglass
+    integer :: ios
+    character(len=256) :: msg
+    namelist /hydro/ q_linear, q_quadratic, hourglass, hourglass_coefficient
+
+    q_linear = opt%q_linear
+    q_quadratic = opt%q_quadratic
+    hourglass = 'viscous'
+    hourglass_coefficient = opt%hourglass_coefficient
+    read(sect, nml=hydro, iostat=ios, iomsg=msg)
+    call nml_error('hydro', ios, msg, status)
+    if (ios /= 0) return
+    if (q_linear < 0.0_rk) call status%add('&hydro: q_linear: must be >= 0')
+    if (q_quadratic < 0.0_rk) call status%add('&hydro: q_quadratic: must be >= 0')
+    if (hourglass_coefficient < 0.0_rk .or. hourglass_coefficient > 1.0_rk) call status%add( &
+        '&hydro: hourglass_coefficient: must be in [0, 1]')
+    select case (to_lower(hourglass))
+    case ('none')
+      opt%hourglass = HOURGLASS_NONE
+    case ('viscous')
+      opt%hourglass = HOURGLASS_VISCOUS
+    case ('stiffness')
+      opt%hourglass = HOURGLASS_STIFFNESS
+    case default
+      call status%add('&hydro: hourglass: '''//trim(hourglass)//''' is not a hourglass '// &
+          'control (valid: none, viscous, stiffness)')
+    end select
+    opt%q_linear = q_linear
+    opt%q_quadratic = q_quadratic
+    opt%hourglass_coefficient = hourglass_coefficient
+  end subroutine read_hydro
+
+  subroutine read_mesh(sect, config, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    type(config_t), intent(inout) :: config
+    type(status_t), intent(inout) :: status
+    character(len=16) :: type
+    real(rk) :: x(MAX_INTERVALS + 1), y(MAX_INTERVALS + 1), z(MAX_INTERVALS + 1)
+    real(rk) :: ratio_x(MAX_INTERVALS), ratio_y(MAX_INTERVALS), ratio_z(MAX_INTERVALS)
+    integer :: nx(MAX_INTERVALS), ny(MAX_INTERVALS), nz(MAX_INTERVALS)
+    real(rk) :: skew_amplitude
+    integer :: ios
+    character(len=256) :: msg
+    namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude
+
+    type = 'box'
+    x = UNSET
+    y = UNSET
+    z = UNSET
+    nx = 0
+    ny = 0
+    nz = 0
+    ratio_x = 1.0_rk
+    ratio_y = 1.0_rk
+    ratio_z = 1.0_rk
+    skew_amplitude = 0.0_rk
+    read(sect, nml=mesh, iostat=ios, iomsg=msg)
+    call nml_error('mesh', ios, msg, status)
+    if (ios /= 0) return
+    config%mesh_type = to_lower(type)
+    if (config%mesh_type /= 'box') then
+      call status%add('&mesh: type: '''//trim(type)//''' is not a mesh type (valid: box)')
+      return
+    end if
+    call direction('x', x, nx, ratio_x, 1)
+    call direction('y', y, ny, ratio_y, 2)
+    call direction('z', z, nz, ratio_z, 3)
+    config%box%skew_amplitude = skew_amplitude
+
+  contains
+
+    subroutine direction(axis, points, zones, ratio, d)
+      character(len=1), intent(in) :: axis
+      real(rk), intent(in) :: points(:), ratio(:)
+      integer, intent(in) :: zones(:), d
+      integer :: nint, npoint, i
+      nint = count(zones /= 0)
+      npoint = count(points /= UNSET)
+      if (nint == 0) then
+        call status%add('&mesh: n'//axis//': required (zones in each interval along '//axis//')')
+        return
+      end if
+      if (any(zones(1:nint) < 1) .or. any(zones(nint + 1:) /= 0)) then
+        call status%add('&mesh: n'//axis//': every interval needs >= 1 zone')
+        return
+      end if
+      if (npoint /= nint + 1 .or. any(points(1:npoint) == UNSET)) then
+        call status%add('&mesh: '//axis//': needs one more point than n'//axis// &
+            ' has intervals (the interval ends)')
+        return
+      end if
+      do i = 1, nint
+        if (.not. (points(i + 1) > points(i))) then
+          call status%add('&mesh: '//axis//': points must increase')
+          return
+        end if
+        if (.not. (ratio(i) > 0.0_rk)) then
+          call status%add('&mesh: ratio_'//axis//': must be > 0')
+          return
+        end if
+      end do
+      config%box%nint(d) = nint
+      config%box%breaks(0:nint, d) = points(1:nint + 1)
+      config%box%zones(1:nint, d) = zones(1:nint)
+      config%box%ratio(1:nint, d) = ratio(1:nint)
+    end subroutine direction
+
+  end subroutine read_mesh
+
+  subroutine read_material(sect, index, mat, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    integer, intent(in) :: index
+    type(material_t), intent(inout) :: mat
+    type(status_t), intent(inout) :: status
+    character(len=NAME_LEN) :: name
+    character(len=32) :: eos
+    real(rk) :: gamma
+    integer :: ios
+    character(len=256) :: msg
+    character(len=16) :: where
+    namelist /material/ name, eos, gamma
+
+    write(where, '(a,i0,a)') '&material(', index, ')'
+    name = ''
+    eos = ''
+    gamma = UNSET
+    read(sect, nml=material, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call status%add(trim(where)//': cannot read the group: '//trim(msg))
+      return
+    end if
+    if (len_trim(name) == 0) call status%add(trim(where)//': name: required')
+    mat%name = name
+    select case (to_lower(eos))
+    case ('ideal_gas')
+      mat%eos = EOS_IDEAL_GAS
+      if (gamma == UNSET) then
+        call status%add(trim(where)//': gamma: required for eos = ''ideal_gas''')
+      else if (.not. (gamma > 1.0_rk)) then
+        call status%add(trim(where)//': gamma: must be > 1')
+      end if
+      mat%gamma = gamma
+    case ('')
+      call status%add(trim(where)//': eos: required (valid: ideal_gas)')
+    case default
+      call status%add(trim(where)//': eos: '''//trim(eos)//''' is not an equation of '// &
+          'state (valid: ideal_gas)')
+    end select
+  end subroutine read_material
+
+  subroutine check_material_names(config, status)
+    type(config_t), intent(in) :: config
+    type(status_t), intent(inout) :: status
+    integer :: i, j
+    do i = 1, size(config%materials)
+      do j = 1, i - 1
+        if (len_trim(config%materials(i)%name) > 0 .and. &
+            config%materials(i)%name == config%materials(j)%name) call status%add( &
+            '&material: name: '''//trim(config%materials(i)%name)//''' is given twice')
+      end do
+    end do
+  end subroutine check_material_names
+
+  subroutine read_block(sect, index, config, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    integer, intent(in) :: index
+    type(config_t), intent(inout) :: config
+    type(status_t), intent(inout) :: status
+    character(len=NAME_LEN) :: name, material
+    real(rk) :: box(6)
+    integer :: ios, i
+    character(len=256) :: msg
+    character(len=16) :: where
+    namelist /block/ name, material, box
+
+    write(where, '(a,i0,a)') '&block(', index, ')'
+    name = ''
+    material = ''
+    box = config%blocks(index)%box
+    read(sect, nml=block, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call status%add(trim(where)//': cannot read the group: '//trim(msg))
+      return
+    end if
+    if (len_trim(name) == 0) call status%add(trim(where)//': name: required')
+    do i = 1, index - 1
+      if (config%blocks(i)%name == name) call status%add(trim(where)//': name: '''// &
+          trim(name)//''' is given twice')
+    end do
+    config%blocks(index)%name = name
+    config%blocks(index)%box = box
+    if (box(1) > box(2) .or. box(3) > box(4) .or. box(5) > box(6)) call status%add( &
+        trim(where)//': box: needs xmin <= xmax, ymin <= ymax, zmin <= zmax')
+    config%blocks(index)%material = 0
+    do i = 1, size(config%materials)
+      if (config%materials(i)%name == material) config%blocks(index)%material = i
+    end do
+    if (len_trim(material) == 0) then
+      call status%add(trim(where)//': material: required')
+    else if (config%blocks(index)%material == 0) then
+      call status%add(trim(where)//': material: '''//trim(material)// &
+          ''' is not a material of this deck')
+    end if
+  end subroutine read_block
+
+  subroutine read_region(sect, index, config, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    integer, intent(in) :: index
+    type(config_t), intent(inout) :: config
+    type(status_t), intent(inout) :: status
+    character(len=NAME_LEN) :: block
+    real(rk) :: box(6), density, energy, pressure, velocity(3), radial_u0, radial_r0, radial_k
+    real(rk) :: center(3), deposit_energy, deposit_point(3)
+    type(region_t) :: r
+    integer :: ios, i
+    character(len=256) :: msg
+    character(len=16) :: where
+    namelist /region/ block, box, density, energy, pressure, velocity, radial_u0, radial_r0, &
+        radial_k, center, deposit_energy, deposit_point
+
+    write(where, '(a,i0,a)') '&region(', index, ')'
+    block = ''
+    box = r%box
+    density = r%density
+    energy = r%energy
+    pressure = r%pressure
+    velocity = r%velocity
+    radial_u0 = r%radial_u0
+    radial_r0 = r%radial_r0
+    radial_k = r%radial_k
+    center = r%center
+    deposit_energy = r%deposit_energy
+    deposit_point = r%deposit_point
+    read(sect, nml=region, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call status%add(trim(where)//': cannot read the group: '//trim(msg))
+      return
+    end if
+    r%block = 0
+    if (len_trim(block) > 0) then
+      do i = 1, size(config%blocks)
+        if (config%blocks(i)%name == block) r%block = i
+      end do
+      if (r%block == 0) call status%add(trim(where)//': block: '''//trim(block)// &
+          ''' is not a block of this deck')
+    end if
+    if (box(1) > box(2) .or. box(3) > box(4) .or. box(5) > box(6)) call status%add( &
+        trim(where)//': box: needs xmin <= xmax, ymin <= ymax, zmin <= zmax')
+    if (density /= UNSET .and. .not. (density > 0.0_rk)) call status%add(trim(where)// &
+        ': density: must be > 0')
+    if (energy /= UNSET .and. pressure /= UNSET) call status%add(trim(where)// &
+        ': pressure: give energy or pressure, not both')
+    if (energy /= UNSET .and. energy < 0.0_rk) call status%add(trim(where)// &
+        ': energy: must be >= 0')
+    if (pressure /= UNSET .and. pressure < 0.0_rk) call status%add(trim(where)// &
+        ': pressure: must be >= 0')
+    if (pressure /= UNSET .and. density == UNSET) call status%add(trim(where)// &
+        ': pressure: needs density in the same region (to find the energy)')
+    if (.not. (radial_r0 > 0.0_rk)) call status%add(trim(where)//': radial_r0: must be > 0')
+    if (deposit_energy < 0.0_rk) call status%add(trim(where)//': deposit_energy: must be >= 0')
+    r%box = box
+    r%density = density
+    r%energy = energy
+    r%pressure = pressure
+    r%velocity = velocity
+    r%radial_u0 = radial_u0
+    r%radial_r0 = radial_r0
+    r%radial_k = radial_k
+    r%center = center
+    r%deposit_energy = deposit_energy
+    r%deposit_point = deposit_point
+    config%regions(index) = r
+  end subroutine read_region
+
+  subroutine read_boundary(sect, index, bc, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    integer, intent(in) :: index
+    type(boundary_spec_t), intent(inout) :: bc
+    type(status_t), intent(inout) :: status
+    character(len=NAME_LEN) :: set
+    character(len=32) :: type
+    real(rk) :: velocity(3), pressure
+    integer :: ios
+    character(len=256) :: msg
+    character(len=16) :: where
+    namelist /boundary/ set, type, velocity, pressure
+
+    write(where, '(a,i0,a)') '&boundary(', index, ')'
+    set = ''
+    type = ''
+    velocity = UNSET
+    pressure = UNSET
+    read(sect, nml=boundary, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call status%add(trim(where)//': cannot read the group: '//trim(msg))
+      return
+    end if
+    if (len_trim(set) == 0) call status%add(trim(where)//': set: required (a face set name)')
+    bc%set = set
+    select case (to_lower(type))
+    case ('free')
+      bc%kind = BC_FREE
+    case ('symmetry')
+      bc%kind = BC_SYMMETRY
+    case ('velocity')
+      bc%kind = BC_VELOCITY
+      if (any(velocity == UNSET)) call status%add(trim(where)//': velocity: required '// &
+          '(3 components) for type = ''velocity''')
+      bc%velocity = velocity
+    case ('pressure')
+      bc%kind = BC_PRESSURE
+      if (pressure == UNSET) call status%add(trim(where)//': pressure: required for '// &
+          'type = ''pressure''')
+      bc%pressure = pressure
+    case ('')
+      call status%add(trim(where)//': type: required (valid: free, symmetry, velocity, pressure)')
+    case default
+      call status%add(trim(where)//': type: '''//trim(type)//''' is not a boundary '// &
+          'condition (valid: free, symmetry, velocity, pressure)')
+    end select
+    if (bc%kind /= BC_VELOCITY .and. any(velocity /= UNSET)) call status%add(trim(where)// &
+        ': velocity: only for type = ''velocity''')
+    if (bc%kind /= BC_PRESSURE .and. pressure /= UNSET) call status%add(trim(where)// &
+        ': pressure: only for type = ''pressure''')
+  end subroutine read_boundary
+
+  subroutine read_output(sect, out, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    type(output_options_t), intent(inout) :: out
+    type(status_t), intent(inout) :: status
+    character(len=PATH_LEN) :: directory
+    character(len=NAME_LEN) :: prefix
+    real(rk) :: dump_interval
+    integer :: dump_cycles, status_every, history_every, ios
+    character(len=256) :: msg
+    logical :: exists
+    namelist /output/ directory, prefix, dump_interval, dump_cycles, status_every, history_every
+
+    directory = out%directory
+    prefix = out%prefix
+    dump_interval = out%dump_interval
+    dump_cycles = out%dump_cycles
+    status_every = out%status_every
+    history_every = out%history_every
+    read(sect, nml=output, iostat=ios, iomsg=msg)
+    call nml_error('output', ios, msg, status)
+    if (ios /= 0) return
+    if (dump_interval < 0.0_rk) call status%add('&output: dump_interval: must be >= 0')
+    if (dump_cycles < 0) call status%add('&output: dump_cycles: must be >= 0')
+    if (status_every < 1) call status%add('&output: status_every: must be >= 1')
+    if (history_every < 1) call status%add('&output: history_every: must be >= 1')
+    if (len_trim(prefix) == 0 .or. index(prefix, '/') > 0) call status%add('&output: '// &
+        'prefix: must be a non-empty file name without ''/''')
+    inquire(file=trim(directory)//'/.', exist=exists)
+    if (.not. exists) call status%add('&output: directory: '''//trim(directory)// &
+        ''' does not exist')
+    out%directory = directory
+    out%prefix = prefix
+    out%dump_interval = dump_interval
+    out%dump_cycles = dump_cycles
+    out%status_every = status_every
+    out%history_every = history_every
+  end subroutine read_output
+
+end module io_deck

@@ -1,0 +1,454 @@
+!> HDF5 dumps (collective, one hyperslab per rank after a block
+!> redistribution) with the layout of DESIGN.md section 6, their XDMF
+!> sidecars, the time-series XDMF, and restart reading.
+module io_dump
+  use core_kinds, only: rk, ik, i8
+  use core_status, only: status_t
+  use mesh_local, only: mesh_t
+  use hydro_state, only: state_t
+  use io_h5, only: hid_t, h5_create_file, h5_open_file, h5_close_file, h5_write_real_rows, &
+      h5_write_real_vector, h5_write_int_rows, h5_write_int_vector, h5_write_attr_real, &
+      h5_write_attr_int, h5_write_attr_string, h5_read_real_rows, h5_read_real_vector, &
+      h5_read_attr_real, h5_read_attr_int, h5_read_attr_string, h5_dataset_rows, h5_create_group
+  use parallel_env, only: par_rank, par_size, par_comm_handle, par_info_null_handle, par_max
+  implicit none
+  private
+  public :: dump_write, dump_read, dump_series_update
+
+  integer, parameter, public :: FORMAT_VERSION = 1
+
+  !> Run metadata that may differ between runs; written under /run only.
+  type, public :: run_info_t
+    real(rk) :: wall_seconds = 0.0_rk
+    character(len=32) :: reason = 'scheduled' !< why the dump was written
+  end type run_info_t
+
+contains
+
+  !> Write the dump file path (and its .xmf sidecar) of the current state.
+  subroutine dump_write(path, title, units, block_names, mesh, state, info, status)
+    character(len=*), intent(in) :: path, title, units, block_names
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(in) :: state
+    type(run_info_t), intent(in) :: info
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: file
+    integer :: ierr, e, nno, nzo, z, k
+    integer(i8) :: node_first, zone_first
+    character(len=400) :: msg
+    real(rk), allocatable :: nblock3(:, :), nblock1(:, :), zblock(:, :), zlocal(:, :)
+    integer(ik), allocatable :: connectivity(:, :), cblock(:, :)
+
+    msg = ''
+    ierr = 0
+    e = 0
+    nno = mesh%nnode_owned
+    nzo = mesh%nzone_owned
+    node_first = mesh%node_io%first - 1
+    zone_first = mesh%zone_io%first - 1
+    allocate(nblock3(3, mesh%node_io%nblock), nblock1(1, mesh%node_io%nblock))
+    allocate(zblock(1, mesh%zone_io%nblock), zlocal(1, nzo))
+    call h5_create_file(path, par_comm_handle(), par_info_null_handle(), file, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (.not. agreed()) return
+
+    call h5_write_attr_int(file, '/', 'format_version', FORMAT_VERSION, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_real(file, '/', 'time', state%time, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_int(file, '/', 'cycle', int(state%cycle, ik), e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_string(file, '/', 'title', title, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_string(file, '/', 'units', units, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+
+    ! Mesh.
+    call mesh%node_io%to_block(state%node_position(:, 1:nno), nblock3)
+    call h5_write_real_rows(file, '/mesh/coordinates', nblock3, mesh%nnode_global, &
+        node_first, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    allocate(connectivity(8, nzo), cblock(8, mesh%zone_io%nblock))
+    do z = 1, nzo
+      do k = 1, 8
+        connectivity(k, z) = int(mesh%node_gid(mesh%zone_node(k, z)) - 1, ik)
+      end do
+    end do
+    call mesh%zone_io%to_block_int(connectivity, cblock)
+    call h5_write_int_rows(file, '/mesh/connectivity', cblock, mesh%nzone_global, zone_first, &
+        e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call mesh%zone_io%to_block_int(reshape(mesh%zone_block(1:nzo), [1, nzo]), cblock(1:1, :))
+    call h5_write_int_vector(file, '/mesh/block', cblock(1, :), mesh%nzone_global, &
+        zone_first, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_string(file, '/mesh', 'block_names', block_names, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+
+    ! Nodes.
+    call mesh%node_io%to_block(state%node_velocity(:, 1:nno), nblock3)
+    call h5_write_real_rows(file, '/nodes/velocity', nblock3, mesh%nnode_global, node_first, &
+        e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call mesh%node_io%to_block(reshape(state%node_mass(1:nno), [1, nno]), nblock1)
+    call h5_write_real_vector(file, '/nodes/mass', nblock1(1, :), mesh%nnode_global, &
+        node_first, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+
+    ! Zones.
+    call zone_field('/zones/density', state%zone_density)
+    call zone_field('/zones/specific_internal_energy', state%zone_energy)
+    call zone_field('/zones/pressure', state%zone_pressure)
+    call zone_field('/zones/viscosity', state%zone_viscosity)
+    call zone_field('/zones/sound_speed', state%zone_sound_speed)
+    call zone_field('/zones/volume', state%zone_volume)
+    call zone_field('/zones/mass', state%zone_mass)
+
+    ! Restart-only state.
+    call h5_create_group(file, '/restart', e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_real(file, '/restart', 'dt_previous', state%dt_previous, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_real(file, '/restart', 'cycle', real(state%cycle, rk), e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (allocated(state%zone_hourglass)) then
+      deallocate(zblock)
+      allocate(zblock(12, mesh%zone_io%nblock))
+      call mesh%zone_io%to_block(reshape(state%zone_hourglass(:, :, 1:nzo), [12, nzo]), zblock)
+      call h5_write_real_rows(file, '/restart/hourglass_stress', zblock, mesh%nzone_global, &
+          zone_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end if
+
+    ! Run metadata (differs between runs; never compared).
+    call h5_create_group(file, '/run', e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_int(file, '/run', 'ranks', par_size(), e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_real(file, '/run', 'wall_seconds', info%wall_seconds, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_real(file, '/run', 'energy_initial', state%energy_initial, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_write_attr_string(file, '/run', 'reason', info%reason, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (.not. agreed()) return
+    call h5_close_file(file, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (.not. agreed()) return
+    if (par_rank() == 0) call write_sidecar(path, title, mesh%nnode_global, mesh%nzone_global, &
+        state%time, allocated(state%zone_hourglass))
+
+  contains
+
+    subroutine zone_field(name, field)
+      character(len=*), intent(in) :: name
+      real(rk), intent(in) :: field(:)
+      zlocal(1, :) = field(1:nzo)
+      call mesh%zone_io%to_block(zlocal, zblock(1:1, :))
+      call h5_write_real_vector(file, name, zblock(1, :), mesh%nzone_global, zone_first, &
+          e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end subroutine zone_field
+
+    logical function agreed()
+      integer :: worst
+      worst = par_max(abs(ierr))
+      agreed = worst == 0
+      if (.not. agreed) then
+        if (ierr /= 0) then
+          call status%add('dump '''//trim(path)//''': '//trim(msg))
+        else
+          call status%add('dump '''//trim(path)//''': failed on another rank')
+        end if
+      end if
+    end function agreed
+
+  end subroutine dump_write
+
+  !> XDMF sidecar for one dump, so that ParaView and VisIt open it directly.
+  subroutine write_sidecar(path, title, nnode, nzone, time, stiffness)
+    character(len=*), intent(in) :: path, title
+    integer(i8), intent(in) :: nnode, nzone
+    real(rk), intent(in) :: time
+    logical, intent(in) :: stiffness
+    integer :: unit
+    character(len=:), allocatable :: base
+    base = basename(path)
+    open(newunit=unit, file=xmf_name(path), status='replace', action='write')
+    write(unit, '(a)') '<?xml version="1.0" ?>'
+    write(unit, '(a)') '<Xdmf Version="3.0">'
+    write(unit, '(a)') ' <Domain>'
+    call write_grid(unit, base, title, nnode, nzone, time)
+    write(unit, '(a)') ' </Domain>'
+    write(unit, '(a)') '</Xdmf>'
+    close(unit)
+    if (stiffness) continue
+  end subroutine write_sidecar
+
+  !> One <Grid> element describing a dump file (path relative to the .xmf).
+  subroutine write_grid(unit, h5file, title, nnode, nzone, time)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: h5file, title
+    integer(i8), intent(in) :: nnode, nzone
+    real(rk), intent(in) :: time
+    character(len=32) :: nn, nz, ts
+    integer :: i
+    character(len=*), parameter :: zone_fields(7) = [character(len=24) :: 'density', &
+        'specific_internal_energy', 'pressure', 'viscosity', 'sound_speed', 'volume', 'mass']
+    write(nn, '(i0)') nnode
+    write(nz, '(i0)') nzone
+    write(ts, '(es24.16)') time
+    write(unit, '(a)') '  <Grid Name="'//trim(xml_escape(title))//'" GridType="Uniform">'
+    write(unit, '(a)') '   <Time Value="'//trim(adjustl(ts))//'"/>'
+    write(unit, '(a)') '   <Topology TopologyType="Hexahedron" NumberOfElements="'//trim(nz)//'">'
+    write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//' 8" NumberType="Int" '// &
+        'Precision="4" Format="HDF">'//h5file//':/mesh/connectivity</DataItem>'
+    write(unit, '(a)') '   </Topology>'
+    write(unit, '(a)') '   <Geometry GeometryType="XYZ">'
+    write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//' 3" NumberType="Float" '// &
+        'Precision="8" Format="HDF">'//h5file//':/mesh/coordinates</DataItem>'
+    write(unit, '(a)') '   </Geometry>'
+    write(unit, '(a)') '   <Attribute Name="velocity" AttributeType="Vector" Center="Node">'
+    write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//' 3" NumberType="Float" '// &
+        'Precision="8" Format="HDF">'//h5file//':/nodes/velocity</DataItem>'
+    write(unit, '(a)') '   </Attribute>'
+    write(unit, '(a)') '   <Attribute Name="block" AttributeType="Scalar" Center="Cell">'
+    write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//'" NumberType="Int" '// &
+        'Precision="4" Format="HDF">'//h5file//':/mesh/block</DataItem>'
+    write(unit, '(a)') '   </Attribute>'
+    do i = 1, size(zone_fields)
+      write(unit, '(a)') '   <Attribute Name="'//trim(zone_fields(i))// &
+          '" AttributeType="Scalar" Center="Cell">'
+      write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//'" NumberType="Float" '// &
+          'Precision="8" Format="HDF">'//h5file//':/zones/'//trim(zone_fields(i))//'</DataItem>'
+      write(unit, '(a)') '   </Attribute>'
+    end do
+    write(unit, '(a)') '  </Grid>'
+  end subroutine write_grid
+
+  function xml_escape(text) result(out)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: out
+    integer :: i
+    out = ''
+    do i = 1, len_trim(text)
+      select case (text(i:i))
+      case ('<')
+        out = out//'&lt;'
+      case ('>')
+        out = out//'&gt;'
+      case ('&')
+        out = out//'&amp;'
+      case ('"')
+        out = out//'&quot;'
+      case default
+        out = out//text(i:i)
+      end select
+    end do
+  end function xml_escape
+
+  function basename(path) result(base)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: base
+    base = trim(path(index(path, '/', back=.true.) + 1:))
+  end function basename
+
+  function xmf_name(path) result(name)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: name
+    integer :: dot
+    dot = index(path, '.h5', back=.true.)
+    if (dot > 0) then
+      name = path(1:dot - 1)//'.xmf'
+    else
+      name = trim(path)//'.xmf'
+    end if
+  end function xmf_name
+
+  !> Rank 0: add a dump to the index file series_path.dumps (dropping entries at
+  !> or after its cycle, as after a restart) and rewrite the time-series XDMF.
+  subroutine dump_series_update(series_path, dump_path, title, cycle, time, nnode, nzone)
+    character(len=*), intent(in) :: series_path !< without extension
+    character(len=*), intent(in) :: dump_path, title
+    integer(i8), intent(in) :: cycle
+    real(rk), intent(in) :: time
+    integer(i8), intent(in) :: nnode, nzone
+    integer :: unit, ios, n, i
+    integer(i8), allocatable :: cycles(:)
+    real(rk), allocatable :: times(:)
+    character(len=256), allocatable :: files(:)
+    integer(i8) :: c
+    real(rk) :: t
+    character(len=256) :: f
+    logical :: exists
+
+    if (par_rank() /= 0) return
+    ! Count the existing entries, then keep those before this cycle.
+    n = 0
+    inquire(file=series_path//'.dumps', exist=exists)
+    if (exists) then
+      open(newunit=unit, file=series_path//'.dumps', status='old', action='read')
+      do
+        read(unit, *, iostat=ios) c, t, f
+        if (ios /= 0) exit
+        n = n + 1
+      end do
+      close(unit)
+    end if
+    allocate(cycles(n + 1), times(n + 1), files(n + 1))
+    n = 0
+    if (exists) then
+      open(newunit=unit, file=series_path//'.dumps', status='old', action='read')
+      do
+        read(unit, *, iostat=ios) c, t, f
+        if (ios /= 0) exit
+        if (c >= cycle) cycle
+        n = n + 1
+        cycles(n) = c
+        times(n) = t
+        files(n) = f
+      end do
+      close(unit)
+    end if
+    n = n + 1
+    cycles(n) = cycle
+    times(n) = time
+    files(n) = basename(dump_path)
+    open(newunit=unit, file=series_path//'.dumps', status='replace', action='write')
+    do i = 1, n
+      write(unit, '(i0,1x,es24.16,1x,a)') cycles(i), times(i), trim(files(i))
+    end do
+    close(unit)
+    open(newunit=unit, file=series_path//'.xmf', status='replace', action='write')
+    write(unit, '(a)') '<?xml version="1.0" ?>'
+    write(unit, '(a)') '<Xdmf Version="3.0">'
+    write(unit, '(a)') ' <Domain>'
+    write(unit, '(a)') ' <Grid Name="series" GridType="Collection" CollectionType="Temporal">'
+    do i = 1, n
+      call write_grid(unit, trim(files(i)), title, nnode, nzone, times(i))
+    end do
+    write(unit, '(a)') ' </Grid>'
+    write(unit, '(a)') ' </Domain>'
+    write(unit, '(a)') '</Xdmf>'
+    close(unit)
+  end subroutine dump_series_update
+
+  !> Read a dump into the state of a mesh built from the same deck: positions,
+  !> velocities, masses, energies, restart state; ghosts refreshed by halos.
+  subroutine dump_read(path, mesh, state, status)
+    character(len=*), intent(in) :: path
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(inout) :: state
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: file
+    integer :: ierr, e, nno, nzo, version, icycle, ncomp
+    integer(i8) :: node_first, zone_first, nglobal
+    character(len=400) :: msg
+    real(rk), allocatable :: nblock3(:, :), nblock1(:, :), zblock(:, :), zlocal(:, :)
+    real(rk), allocatable :: zlocal_nodes(:, :)
+    real(rk) :: rcycle
+
+    msg = ''
+    ierr = 0
+    e = 0
+    nno = mesh%nnode_owned
+    nzo = mesh%nzone_owned
+    node_first = mesh%node_io%first - 1
+    zone_first = mesh%zone_io%first - 1
+    allocate(nblock3(3, mesh%node_io%nblock), nblock1(1, mesh%node_io%nblock))
+    allocate(zblock(1, mesh%zone_io%nblock), zlocal(1, mesh%nzone), zlocal_nodes(1, nno))
+    call h5_open_file(path, par_comm_handle(), par_info_null_handle(), file, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (.not. agreed()) return
+    call h5_read_attr_int(file, '/', 'format_version', version, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (ierr == 0 .and. version /= FORMAT_VERSION) then
+      ierr = 1
+      msg = 'format_version is not 1'
+    end if
+    if (.not. agreed()) return
+    call h5_dataset_rows(file, '/zones/density', nglobal, ncomp, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (ierr == 0 .and. nglobal /= mesh%nzone_global) then
+      ierr = 1
+      msg = 'the dump has a different number of zones than the deck''s mesh'
+    end if
+    call h5_dataset_rows(file, '/mesh/coordinates', nglobal, ncomp, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (ierr == 0 .and. nglobal /= mesh%nnode_global) then
+      ierr = 1
+      msg = 'the dump has a different number of nodes than the deck''s mesh'
+    end if
+    if (.not. agreed()) return
+    call h5_read_attr_real(file, '/', 'time', state%time, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_read_attr_int(file, '/', 'cycle', icycle, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_read_attr_real(file, '/restart', 'cycle', rcycle, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    state%cycle = int(rcycle, i8)
+    call h5_read_attr_real(file, '/restart', 'dt_previous', state%dt_previous, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_read_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call h5_read_attr_real(file, '/run', 'energy_initial', state%energy_initial, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+
+    call h5_read_real_rows(file, '/mesh/coordinates', nblock3, node_first, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call mesh%node_io%from_block(nblock3, state%node_position(:, 1:nno))
+    call h5_read_real_rows(file, '/nodes/velocity', nblock3, node_first, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call mesh%node_io%from_block(nblock3, state%node_velocity(:, 1:nno))
+    call h5_read_real_vector(file, '/nodes/mass', nblock1(1, :), node_first, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call mesh%node_io%from_block(nblock1, zlocal_nodes)
+    state%node_mass(1:nno) = zlocal_nodes(1, :)
+    call read_zone('/zones/mass', state%zone_mass)
+    call read_zone('/zones/specific_internal_energy', state%zone_energy)
+    if (allocated(state%zone_hourglass)) then
+      deallocate(zblock, zlocal)
+      allocate(zblock(12, mesh%zone_io%nblock), zlocal(12, mesh%nzone))
+      call h5_read_real_rows(file, '/restart/hourglass_stress', zblock, zone_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call mesh%zone_io%from_block(zblock, zlocal(:, 1:nzo))
+      call mesh%zone_halo%exchange(zlocal)
+      state%zone_hourglass = reshape(zlocal, [3, 4, mesh%nzone])
+    end if
+    if (.not. agreed()) return
+    call h5_close_file(file, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (.not. agreed()) return
+    call mesh%node_halo%exchange(state%node_position)
+    call mesh%node_halo%exchange(state%node_velocity)
+
+  contains
+
+    subroutine read_zone(name, field)
+      character(len=*), intent(in) :: name
+      real(rk), intent(inout) :: field(:)
+      call h5_read_real_vector(file, name, zblock(1, :), zone_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call mesh%zone_io%from_block(zblock(1:1, :), zlocal(1:1, 1:nzo))
+      call mesh%zone_halo%exchange(zlocal(1:1, :))
+      field = zlocal(1, :)
+    end subroutine read_zone
+
+    logical function agreed()
+      integer :: worst
+      worst = par_max(abs(ierr))
+      agreed = worst == 0
+      if (.not. agreed) then
+        if (ierr /= 0) then
+          call status%add('restart file '''//trim(path)//''': '//trim(msg))
+        else
+          call status%add('restart file '''//trim(path)//''': failed on another rank')
+        end if
+      end if
+    end function agreed
+
+  end subroutine dump_read
+
+end module io_dump

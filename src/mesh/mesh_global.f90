@@ -1,0 +1,208 @@
+!> The whole mesh as generated or read, before partitioning: every rank builds
+!> the same one (deterministic), then keeps its part (mesh_local).
+module mesh_global
+  use core_kinds, only: rk, ik
+  use core_status, only: status_t
+  implicit none
+  private
+  public :: box_spec_t, mesh_make_box, interval_points
+
+  integer, parameter, public :: MAX_INTERVALS = 16
+  integer, parameter, public :: NAME_LEN = 32
+
+  !> Global hex mesh: 1-based node ids in connectivity, zones in global-id order.
+  type, public :: global_mesh_t
+    integer :: nnode = 0 !< nodes
+    integer :: nzone = 0 !< zones
+    real(rk), allocatable :: coordinates(:, :) !< (3, nnode)
+    integer(ik), allocatable :: connectivity(:, :) !< (8, nzone)
+    integer(ik), allocatable :: zone_block(:) !< block index of each zone (0 = none yet)
+    integer :: nset = 0 !< named face sets
+    character(len=NAME_LEN), allocatable :: set_name(:) !< their names
+    integer, allocatable :: set_start(:) !< CSR into set_zone/set_face, size nset+1
+    integer(ik), allocatable :: set_zone(:) !< zone of each set face
+    integer(ik), allocatable :: set_face(:) !< local face 1..6 (mesh_geometry order)
+  contains
+    procedure :: free => global_mesh_free
+    procedure :: find_set => global_mesh_find_set
+  end type global_mesh_t
+
+  !> A structured box: per direction, breakpoints, zones per interval and grading.
+  type :: box_spec_t
+    integer :: nint(3) = 0 !< intervals per direction
+    real(rk) :: breaks(0:MAX_INTERVALS, 3) = 0.0_rk !< interval end points
+    integer :: zones(MAX_INTERVALS, 3) = 0 !< zones in each interval
+    real(rk) :: ratio(MAX_INTERVALS, 3) = 1.0_rk !< last/first zone size in each interval
+    real(rk) :: skew_amplitude = 0.0_rk !< Saltzman sine skew of x (0 = none)
+  end type box_spec_t
+
+contains
+
+  !> Release everything.
+  subroutine global_mesh_free(this)
+    class(global_mesh_t), intent(inout) :: this
+    if (allocated(this%coordinates)) deallocate(this%coordinates)
+    if (allocated(this%connectivity)) deallocate(this%connectivity)
+    if (allocated(this%zone_block)) deallocate(this%zone_block)
+    if (allocated(this%set_name)) deallocate(this%set_name)
+    if (allocated(this%set_start)) deallocate(this%set_start)
+    if (allocated(this%set_zone)) deallocate(this%set_zone)
+    if (allocated(this%set_face)) deallocate(this%set_face)
+    this%nnode = 0
+    this%nzone = 0
+    this%nset = 0
+  end subroutine global_mesh_free
+
+  !> Index of the face set called name, 0 if there is none.
+  integer function global_mesh_find_set(this, name) result(k)
+    class(global_mesh_t), intent(in) :: this
+    character(len=*), intent(in) :: name
+    do k = 1, this%nset
+      if (trim(this%set_name(k)) == trim(name)) return
+    end do
+    k = 0
+  end function global_mesh_find_set
+
+  !> Node positions along one direction: geometric grading in each interval.
+  subroutine interval_points(nint, breaks, zones, ratio, points)
+    integer, intent(in) :: nint
+    real(rk), intent(in) :: breaks(0:), ratio(:)
+    integer, intent(in) :: zones(:)
+    real(rk), allocatable, intent(out) :: points(:) !< 0:n positions
+    integer :: i, k, n, pos
+    real(rk) :: q, first, length, s
+    n = sum(zones(1:nint))
+    allocate(points(0:n))
+    points(0) = breaks(0)
+    pos = 0
+    do i = 1, nint
+      length = breaks(i) - breaks(i - 1)
+      if (zones(i) == 1 .or. abs(ratio(i) - 1.0_rk) < 1.0e-14_rk) then
+        do k = 1, zones(i)
+          points(pos + k) = breaks(i - 1) + length * real(k, rk) / real(zones(i), rk)
+        end do
+      else
+        q = ratio(i)**(1.0_rk / real(zones(i) - 1, rk))
+        first = length * (q - 1.0_rk) / (q**zones(i) - 1.0_rk)
+        s = 0.0_rk
+        do k = 1, zones(i)
+          s = s + first * q**(k - 1)
+          points(pos + k) = breaks(i - 1) + s
+        end do
+      end if
+      points(pos + zones(i)) = breaks(i)
+      pos = pos + zones(i)
+    end do
+  end subroutine interval_points
+
+  !> Structured box with face sets xmin, xmax, ymin, ymax, zmin, zmax.
+  !> Node (i,j,k) has id i + (nx+1) j + (nx+1)(ny+1) k + 1 (0-based i,j,k);
+  !> zone ids run the same way with i fastest.
+  subroutine mesh_make_box(spec, mesh, status)
+    type(box_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    real(rk), allocatable :: px(:), py(:), pz(:)
+    integer :: nx, ny, nz, i, j, k, n, z, s, f, count_face
+    real(rk) :: xmin, xmax, ymin, ymax, pi
+
+    call mesh%free()
+    call interval_points(spec%nint(1), spec%breaks(:, 1), spec%zones(:, 1), spec%ratio(:, 1), px)
+    call interval_points(spec%nint(2), spec%breaks(:, 2), spec%zones(:, 2), spec%ratio(:, 2), py)
+    call interval_points(spec%nint(3), spec%breaks(:, 3), spec%zones(:, 3), spec%ratio(:, 3), pz)
+    nx = size(px) - 1
+    ny = size(py) - 1
+    nz = size(pz) - 1
+    if (nx < 1 .or. ny < 1 .or. nz < 1) then
+      call status%add('&mesh: the box needs at least one zone in each direction')
+      return
+    end if
+    mesh%nnode = (nx + 1) * (ny + 1) * (nz + 1)
+    mesh%nzone = nx * ny * nz
+    allocate(mesh%coordinates(3, mesh%nnode), mesh%connectivity(8, mesh%nzone))
+    allocate(mesh%zone_block(mesh%nzone))
+    mesh%zone_block = 0
+    pi = acos(-1.0_rk)
+    xmin = px(0)
+    xmax = px(nx)
+    ymin = py(0)
+    ymax = py(ny)
+    do k = 0, nz
+      do j = 0, ny
+        do i = 0, nx
+          n = node_id(i, j, k)
+          mesh%coordinates(:, n) = [px(i), py(j), pz(k)]
+          if (spec%skew_amplitude /= 0.0_rk) then
+            mesh%coordinates(1, n) = px(i) + spec%skew_amplitude * (ymax - py(j)) / &
+                (ymax - ymin) * sin(pi * (px(i) - xmin) / (xmax - xmin))
+          end if
+        end do
+      end do
+    end do
+    do k = 0, nz - 1
+      do j = 0, ny - 1
+        do i = 0, nx - 1
+          z = 1 + i + nx * (j + ny * k)
+          mesh%connectivity(:, z) = [node_id(i, j, k), node_id(i + 1, j, k), &
+              node_id(i + 1, j + 1, k), node_id(i, j + 1, k), node_id(i, j, k + 1), &
+              node_id(i + 1, j, k + 1), node_id(i + 1, j + 1, k + 1), node_id(i, j + 1, k + 1)]
+        end do
+      end do
+    end do
+    ! Face sets; mesh_geometry face order: 1 zeta-, 2 zeta+, 3 eta-, 4 xi+, 5 eta+, 6 xi-.
+    mesh%nset = 6
+    allocate(mesh%set_name(6), mesh%set_start(7))
+    mesh%set_name = [character(len=NAME_LEN) :: 'xmin', 'xmax', 'ymin', 'ymax', 'zmin', 'zmax']
+    count_face = 2 * (ny * nz + nx * nz + nx * ny)
+    allocate(mesh%set_zone(count_face), mesh%set_face(count_face))
+    s = 0
+    mesh%set_start(1) = 1
+    do f = 1, 6
+      do k = 0, nz - 1
+        do j = 0, ny - 1
+          do i = 0, nx - 1
+            if (on_face(f, i, j, k)) then
+              s = s + 1
+              mesh%set_zone(s) = 1 + i + nx * (j + ny * k)
+              mesh%set_face(s) = face_of_set(f)
+            end if
+          end do
+        end do
+      end do
+      mesh%set_start(f + 1) = s + 1
+    end do
+
+  contains
+
+    pure integer function node_id(ii, jj, kk)
+      integer, intent(in) :: ii, jj, kk
+      node_id = 1 + ii + (nx + 1) * (jj + (ny + 1) * kk)
+    end function node_id
+
+    pure logical function on_face(set, ii, jj, kk)
+      integer, intent(in) :: set, ii, jj, kk
+      select case (set)
+      case (1)
+        on_face = ii == 0
+      case (2)
+        on_face = ii == nx - 1
+      case (3)
+        on_face = jj == 0
+      case (4)
+        on_face = jj == ny - 1
+      case (5)
+        on_face = kk == 0
+      case default
+        on_face = kk == nz - 1
+      end select
+    end function on_face
+
+    pure integer function face_of_set(set)
+      integer, intent(in) :: set
+      integer, parameter :: map(6) = [6, 4, 3, 5, 1, 2]
+      face_of_set = map(set)
+    end function face_of_set
+
+  end subroutine mesh_make_box
+
+end module mesh_global

@@ -1,0 +1,223 @@
+!> The MPI environment: start-up, shutdown, abort, broadcasts and reductions.
+!> The only module globals of the code live here: the communicator, rank and size.
+module parallel_env
+  use mpi_f08
+  use core_kinds, only: rk, ik, i8
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  implicit none
+  private
+  public :: par_init, par_finalize, par_abort, par_barrier
+  public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle
+  public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_allgather, par_wtime
+
+  type(MPI_Comm) :: comm_world !< the run's communicator (set once)
+  integer :: my_rank = 0 !< this rank
+  integer :: n_ranks = 1 !< number of ranks
+
+  !> Broadcast from rank 0.
+  interface par_bcast
+    module procedure bcast_int, bcast_int_array, bcast_i8_array, bcast_real, bcast_real_array, &
+        bcast_real_array2, bcast_logical, bcast_logical_array, bcast_string, bcast_string_array
+  end interface par_bcast
+
+  !> Global sum (diagnostics only: the order is the MPI library's).
+  interface par_sum
+    module procedure sum_real, sum_int, sum_i8
+  end interface par_sum
+
+  !> Global minimum.
+  interface par_min
+    module procedure min_real, min_int
+  end interface par_min
+
+  !> Global maximum.
+  interface par_max
+    module procedure max_real, max_int
+  end interface par_max
+
+  !> Gather one small record from every rank onto every rank.
+  interface par_allgather
+    module procedure allgather_real, allgather_int
+  end interface par_allgather
+
+contains
+
+  !> Start MPI and record rank and size.
+  subroutine par_init()
+    call MPI_Init()
+    comm_world = MPI_COMM_WORLD
+    call MPI_Comm_rank(comm_world, my_rank)
+    call MPI_Comm_size(comm_world, n_ranks)
+  end subroutine par_init
+
+  !> Finish MPI cleanly.
+  subroutine par_finalize()
+    logical :: done
+    call MPI_Finalized(done)
+    if (.not. done) call MPI_Finalize()
+  end subroutine par_finalize
+
+  !> Last resort when a rank cannot reach a collective: message and MPI_Abort.
+  subroutine par_abort(message, code)
+    character(len=*), intent(in) :: message !< what went wrong
+    integer, intent(in) :: code !< non-zero exit code
+    write(error_unit, '(a,i0,a)') 'rank ', my_rank, ': '//trim(message)
+    flush(error_unit)
+    call MPI_Abort(comm_world, max(code, 1))
+    error stop 1
+  end subroutine par_abort
+
+  !> Synchronise every rank.
+  subroutine par_barrier()
+    call MPI_Barrier(comm_world)
+  end subroutine par_barrier
+
+  !> This rank (0-based).
+  integer function par_rank()
+    par_rank = my_rank
+  end function par_rank
+
+  !> Number of ranks.
+  integer function par_size()
+    par_size = n_ranks
+  end function par_size
+
+  !> The communicator for code in src/parallel.
+  function par_comm() result(c)
+    type(MPI_Comm) :: c
+    c = comm_world
+  end function par_comm
+
+  !> The communicator as a plain integer handle (for HDF5's Fortran API).
+  integer function par_comm_handle()
+    par_comm_handle = comm_world%MPI_VAL
+  end function par_comm_handle
+
+  !> MPI_INFO_NULL as a plain integer handle (for HDF5's Fortran API).
+  integer function par_info_null_handle()
+    par_info_null_handle = MPI_INFO_NULL%MPI_VAL
+  end function par_info_null_handle
+
+  !> Wall-clock seconds.
+  function par_wtime() result(t)
+    real(rk) :: t
+    t = MPI_Wtime()
+  end function par_wtime
+
+  subroutine bcast_int(x)
+    integer(ik), intent(inout) :: x
+    call MPI_Bcast(x, 1, MPI_INTEGER, 0, comm_world)
+  end subroutine bcast_int
+
+  subroutine bcast_int_array(x)
+    integer(ik), intent(inout) :: x(:)
+    call MPI_Bcast(x, size(x), MPI_INTEGER, 0, comm_world)
+  end subroutine bcast_int_array
+
+  subroutine bcast_i8_array(x)
+    integer(i8), intent(inout) :: x(:)
+    call MPI_Bcast(x, size(x), MPI_INTEGER8, 0, comm_world)
+  end subroutine bcast_i8_array
+
+  subroutine bcast_real(x)
+    real(rk), intent(inout) :: x
+    call MPI_Bcast(x, 1, MPI_DOUBLE_PRECISION, 0, comm_world)
+  end subroutine bcast_real
+
+  subroutine bcast_real_array(x)
+    real(rk), intent(inout) :: x(:)
+    call MPI_Bcast(x, size(x), MPI_DOUBLE_PRECISION, 0, comm_world)
+  end subroutine bcast_real_array
+
+  subroutine bcast_real_array2(x)
+    real(rk), intent(inout), contiguous :: x(:, :)
+    call MPI_Bcast(x, size(x), MPI_DOUBLE_PRECISION, 0, comm_world)
+  end subroutine bcast_real_array2
+
+  subroutine bcast_logical(x)
+    logical, intent(inout) :: x
+    call MPI_Bcast(x, 1, MPI_LOGICAL, 0, comm_world)
+  end subroutine bcast_logical
+
+  subroutine bcast_logical_array(x)
+    logical, intent(inout) :: x(:)
+    call MPI_Bcast(x, size(x), MPI_LOGICAL, 0, comm_world)
+  end subroutine bcast_logical_array
+
+  subroutine bcast_string(x)
+    character(len=*), intent(inout) :: x
+    call MPI_Bcast(x, len(x), MPI_CHARACTER, 0, comm_world)
+  end subroutine bcast_string
+
+  subroutine bcast_string_array(x)
+    character(len=*), intent(inout) :: x(:)
+    call MPI_Bcast(x, len(x) * size(x), MPI_CHARACTER, 0, comm_world)
+  end subroutine bcast_string_array
+
+  function sum_real(x) result(s)
+    real(rk), intent(in) :: x
+    real(rk) :: s
+    call MPI_Allreduce(x, s, 1, MPI_DOUBLE_PRECISION, MPI_SUM, comm_world)
+  end function sum_real
+
+  !> In-place global sum of a small array (diagnostics only).
+  subroutine par_sum_array(x)
+    real(rk), intent(inout) :: x(:)
+    real(rk) :: s(size(x))
+    call MPI_Allreduce(x, s, size(x), MPI_DOUBLE_PRECISION, MPI_SUM, comm_world)
+    x = s
+  end subroutine par_sum_array
+
+  function sum_int(x) result(s)
+    integer(ik), intent(in) :: x
+    integer(ik) :: s
+    call MPI_Allreduce(x, s, 1, MPI_INTEGER, MPI_SUM, comm_world)
+  end function sum_int
+
+  function sum_i8(x) result(s)
+    integer(i8), intent(in) :: x
+    integer(i8) :: s
+    call MPI_Allreduce(x, s, 1, MPI_INTEGER8, MPI_SUM, comm_world)
+  end function sum_i8
+
+  function min_real(x) result(s)
+    real(rk), intent(in) :: x
+    real(rk) :: s
+    call MPI_Allreduce(x, s, 1, MPI_DOUBLE_PRECISION, MPI_MIN, comm_world)
+  end function min_real
+
+  function min_int(x) result(s)
+    integer(ik), intent(in) :: x
+    integer(ik) :: s
+    call MPI_Allreduce(x, s, 1, MPI_INTEGER, MPI_MIN, comm_world)
+  end function min_int
+
+  function max_real(x) result(s)
+    real(rk), intent(in) :: x
+    real(rk) :: s
+    call MPI_Allreduce(x, s, 1, MPI_DOUBLE_PRECISION, MPI_MAX, comm_world)
+  end function max_real
+
+  function max_int(x) result(s)
+    integer(ik), intent(in) :: x
+    integer(ik) :: s
+    call MPI_Allreduce(x, s, 1, MPI_INTEGER, MPI_MAX, comm_world)
+  end function max_int
+
+  !> all(:, r+1) = record of rank r.
+  subroutine allgather_real(record, all)
+    real(rk), intent(in) :: record(:)
+    real(rk), intent(out) :: all(:, :)
+    call MPI_Allgather(record, size(record), MPI_DOUBLE_PRECISION, all, size(record), &
+        MPI_DOUBLE_PRECISION, comm_world)
+  end subroutine allgather_real
+
+  !> all(:, r+1) = record of rank r.
+  subroutine allgather_int(record, all)
+    integer(ik), intent(in) :: record(:)
+    integer(ik), intent(out) :: all(:, :)
+    call MPI_Allgather(record, size(record), MPI_INTEGER, all, size(record), &
+        MPI_INTEGER, comm_world)
+  end subroutine allgather_int
+
+end module parallel_env
