@@ -77,7 +77,7 @@ contains
           ''' does not exist')
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
-    if (status%ok()) call setup_state(config, global, mesh, state, mz, status)
+    if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
     if (.not. status%ok()) then
       call report(status)
       code = EXIT_INPUT
@@ -165,7 +165,8 @@ contains
       fail = FAIL_VOLUME
       z = max(bad, 1)
       gid = real(mesh%zone_gid(z), rk)
-      where = hex_centroid(state%node_position(:, mesh%zone_node(:, z)))
+      ! Where the zone was at the start of the cycle (its new corners may be garbage).
+      where = hex_centroid(state%node_position_old(:, mesh%zone_node(:, z)))
     else
       do z = 1, mesh%nzone_owned
         if (ieee_is_nan(state%zone_energy(z))) then

@@ -6,7 +6,7 @@ module app_setup
   use mesh_global, only: global_mesh_t, mesh_make_box
   use mesh_local, only: mesh_t, mesh_build_local
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS
-  use hydro_boundary, only: boundary_t, boundary_setup
+  use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
   use io_deck, only: config_t
@@ -65,10 +65,11 @@ contains
 
   !> Allocate the state and apply the initial conditions (positions from the
   !> global mesh); nodal masses are the sums of corner masses m_z / 8.
-  subroutine setup_state(config, global, mesh, state, mz, status)
+  subroutine setup_state(config, global, mesh, bc, state, mz, status)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(inout) :: mesh
+    type(boundary_t), intent(in) :: bc
     type(state_t), intent(inout) :: state
     type(material_zones_t), intent(out) :: mz
     type(status_t), intent(inout) :: status
@@ -93,6 +94,8 @@ contains
       end do
       state%node_mass(n) = m
     end do
+    ! Boundary velocities hold from t = 0 (a piston moves from the start).
+    call boundary_constrain(bc, state%node_velocity, .true.)
     call mesh%node_halo%exchange(state%node_velocity)
   end subroutine setup_state
 

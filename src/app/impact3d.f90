@@ -58,15 +58,16 @@ program impact3d
   if (code == EXIT_OK .and. deck /= '-') call run_deck(trim(deck), trim(restart), check_only, &
       code)
   call par_finalize()
-  ! Variable stop codes are Fortran 2018; the codes are few.
+  ! Variable stop codes are Fortran 2018; the codes are few. STOP with a code
+  ! sets the exit status without the runtime's backtrace (the message is out).
   select case (code)
   case (EXIT_OK)
     continue
   case (1)
-    error stop 1
+    stop 1
   case (2)
-    error stop 2
+    stop 2
   case default
-    error stop 3
+    stop 3
   end select
 end program impact3d
