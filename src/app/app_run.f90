@@ -95,7 +95,7 @@ contains
     if (par_rank() == 0) call echo(config, mesh, restart)
     if (check_only) return
 
-    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, &
+    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
     call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl)
     if (len_trim(restart) == 0) then
@@ -360,7 +360,7 @@ contains
           state%node_velocity_half(:, n)
     end do
     call hydro_energy_update(mesh, state, state%node_velocity_half, 0.5_rk * dt)
-    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, &
+    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity_half, bad_half)
 
     ! Corrector: forces at t^n+1/2, final velocities, positions and energies.
@@ -377,7 +377,7 @@ contains
     call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
     if (config%hydro%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = &
         state%zone_hourglass_new
-    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, &
+    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
   end subroutine step
 

@@ -36,6 +36,7 @@ module hydro_boundary
     integer, allocatable :: pnode(:) !< their local indices
     integer, allocatable :: pnode_start(:), pnode_list(:) !< CSR of 4 (face-1) + corner
     real(rk), allocatable :: pnode_force(:, :) !< (3, npnode) external force of the stage
+    logical, allocatable :: face_symmetric(:, :) !< (6, nzone) face lies on a symmetry plane
   end type boundary_t
 
 contains
@@ -135,6 +136,16 @@ contains
           bc%projector(:, j, k) = bc%projector(:, j, k) - dir(:, i, n) * dir(j, i, n)
         end do
         bc%value(:, k) = bc%value(:, k) + target(i, n) * dir(:, i, n)
+      end do
+    end do
+
+    allocate(bc%face_symmetric(6, mesh%nzone))
+    bc%face_symmetric = .false.
+    do ib = 1, size(specs)
+      if (specs(ib)%kind /= BC_SYMMETRY) cycle
+      s = set_index(mesh, specs(ib)%set)
+      do f = mesh%set_start(s), mesh%set_start(s + 1) - 1
+        bc%face_symmetric(mesh%set_face(f), mesh%set_zone(f)) = .true.
       end do
     end do
 

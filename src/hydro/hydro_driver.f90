@@ -7,7 +7,7 @@ module hydro_driver
   use material_table, only: material_t, material_eos
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
-      node_gather_forces, zone_time_step
+      node_gather_forces, zone_time_step, zone_direction_gradients, zone_limited_viscosity
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces
   implicit none
   private
@@ -44,8 +44,9 @@ contains
 
   !> Geometry, density, EOS and viscosity of every local zone at positions x
   !> and velocities v. bad = first local zone with a non-positive volume.
-  subroutine hydro_zone_update(mesh, state, materials, mz, opt, x, v, bad)
-    type(mesh_t), intent(in) :: mesh
+  subroutine hydro_zone_update(mesh, state, materials, mz, opt, bc, x, v, bad)
+    type(mesh_t), intent(inout) :: mesh
+    type(boundary_t), intent(in) :: bc
     type(state_t), intent(inout) :: state
     type(material_t), intent(in) :: materials(:)
     type(material_zones_t), intent(in) :: mz
@@ -64,8 +65,20 @@ contains
       call material_eos(materials(m), mz%list(mz%start(m):mz%start(m + 1) - 1), &
           state%zone_density, state%zone_energy, state%zone_pressure, state%zone_sound_speed)
     end do
-    call zone_viscosity(mesh%nzone, opt%q_linear, opt%q_quadratic, state%zone_density, &
-        state%zone_sound_speed, state%zone_length, state%zone_divergence, state%zone_viscosity)
+    if (opt%q_limiter) then
+      ! The limiter needs face neighbours, which outer ghosts lack: owned zones
+      ! compute q, ghosts receive it.
+      call zone_direction_gradients(mesh%nzone, mesh%zone_node, x, v, state%zone_gradient, &
+          state%zone_direction_length)
+      call zone_limited_viscosity(mesh%nzone_owned, mesh%face_neighbour, &
+          mesh%face_neighbour_face, bc%face_symmetric, state%zone_gradient, opt%q_linear, &
+          opt%q_quadratic, state%zone_density, state%zone_sound_speed, state%zone_length, &
+          state%zone_divergence, state%zone_viscosity)
+      call mesh%zone_halo%exchange(state%zone_viscosity)
+    else
+      call zone_viscosity(mesh%nzone, opt%q_linear, opt%q_quadratic, state%zone_density, &
+          state%zone_sound_speed, state%zone_length, state%zone_divergence, state%zone_viscosity)
+    end if
   end subroutine hydro_zone_update
 
   !> Corner forces of every local zone and the force of every owned node

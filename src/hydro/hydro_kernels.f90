@@ -7,9 +7,14 @@ module hydro_kernels
   implicit none
   private
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
-  public :: node_gather_forces, zone_time_step
+  public :: node_gather_forces, zone_time_step, zone_direction_gradients
+  public :: zone_limited_viscosity
 
   integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
+  !> Faces (mesh_geometry order) on the minus and plus side of each logical direction.
+  integer, parameter :: FACE_MINUS(3) = [6, 3, 1], FACE_PLUS(3) = [4, 5, 2]
+  !> Logical direction normal to each face.
+  integer, parameter :: FACE_DIRECTION(6) = [3, 3, 2, 1, 2, 1]
 
 contains
 
@@ -198,5 +203,90 @@ contains
       end if
     end do
   end subroutine zone_time_step
+
+  !> Stretching rate g_d = dv_d . dx_d / |dx_d|^2 of zones 1..n along their
+  !> three logical directions (dx_d, dv_d: differences between opposite face
+  !> centres), and the zone length |dx_d| along each.
+  subroutine zone_direction_gradients(n, zone_node, x, v, gradient, length)
+    integer, intent(in) :: n
+    integer, intent(in) :: zone_node(:, :)
+    real(rk), intent(in) :: x(:, :), v(:, :)
+    real(rk), intent(inout) :: gradient(:, :), length(:, :) !< (3, nzone)
+    integer, parameter :: face_nodes(4, 6) = reshape([1, 4, 3, 2, 5, 6, 7, 8, 1, 2, 6, 5, &
+        2, 3, 7, 6, 3, 4, 8, 7, 4, 1, 5, 8], [4, 6])
+    real(rk) :: xz(3, 8), vz(3, 8), dx(3), dv(3), l2
+    integer :: z, k, d
+    do z = 1, n
+      do k = 1, 8
+        xz(:, k) = x(:, zone_node(k, z))
+        vz(:, k) = v(:, zone_node(k, z))
+      end do
+      do d = 1, 3
+        dx = 0.25_rk * (sum(xz(:, face_nodes(:, FACE_PLUS(d))), dim=2) &
+            - sum(xz(:, face_nodes(:, FACE_MINUS(d))), dim=2))
+        dv = 0.25_rk * (sum(vz(:, face_nodes(:, FACE_PLUS(d))), dim=2) &
+            - sum(vz(:, face_nodes(:, FACE_MINUS(d))), dim=2))
+        l2 = dot_product(dx, dx)
+        length(d, z) = sqrt(l2)
+        if (l2 > 0.0_rk) then
+          gradient(d, z) = dot_product(dv, dx) / l2
+        else
+          gradient(d, z) = 0.0_rk
+        end if
+      end do
+    end do
+  end subroutine zone_direction_gradients
+
+  !> Monotonic (Christensen-type) limited viscosity of zones 1..n. Along each
+  !> logical direction d in compression (g_d < 0) the limiter is
+  !> phi_d = max(0, min((r- + r+)/2, 2 r-, 2 r+, 1)), r+- the neighbours'
+  !> stretching rates over the zone's own; the zone takes phi = min_d phi_d
+  !> (smooth only if smooth in every direction) and
+  !> q = rho (1 - phi)^2 C2 (L D)^2 + rho (1 - phi) C1 c L |D| for D = div v < 0.
+  !> A missing neighbour counts as r = 1 on a symmetry plane, r = 0 elsewhere.
+  subroutine zone_limited_viscosity(n, neighbour, neighbour_face, symmetric, gradient, &
+      q_linear, q_quadratic, density, sound_speed, length, divergence, q)
+    integer, intent(in) :: n
+    integer, intent(in) :: neighbour(:, :), neighbour_face(:, :) !< (6, nzone)
+    logical, intent(in) :: symmetric(:, :) !< (6, nzone) face on a symmetry plane
+    real(rk), intent(in) :: gradient(:, :)
+    real(rk), intent(in) :: q_linear, q_quadratic
+    real(rk), intent(in) :: density(:), sound_speed(:), length(:), divergence(:)
+    real(rk), intent(inout) :: q(:)
+    integer :: z, d
+    real(rk) :: g, rm, rp, phi, du
+    do z = 1, n
+      if (divergence(z) >= 0.0_rk) then
+        q(z) = 0.0_rk
+        cycle
+      end if
+      phi = 1.0_rk
+      do d = 1, 3
+        g = gradient(d, z)
+        if (g >= 0.0_rk) cycle
+        rm = ratio(FACE_MINUS(d))
+        rp = ratio(FACE_PLUS(d))
+        phi = min(phi, max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk)))
+      end do
+      du = length(z) * divergence(z) * (1.0_rk - phi)
+      q(z) = density(z) * (q_quadratic * du * du - q_linear * sound_speed(z) * du)
+    end do
+
+  contains
+
+    real(rk) function ratio(face)
+      integer, intent(in) :: face
+      integer :: nb
+      nb = neighbour(face, z)
+      if (nb > 0) then
+        ratio = gradient(FACE_DIRECTION(neighbour_face(face, z)), nb) / g
+      else if (symmetric(face, z)) then
+        ratio = 1.0_rk
+      else
+        ratio = 0.0_rk
+      end if
+    end function ratio
+
+  end subroutine zone_limited_viscosity
 
 end module hydro_kernels

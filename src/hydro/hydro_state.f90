@@ -17,7 +17,8 @@ module hydro_state
     real(rk) :: dt_growth = 1.1_rk !< largest growth of dt per cycle
     real(rk) :: dvol_max = 0.1_rk !< largest relative volume change per cycle
     real(rk) :: q_linear = 0.5_rk !< linear viscosity coefficient C1
-    real(rk) :: q_quadratic = 2.0_rk !< quadratic viscosity coefficient C2
+    real(rk) :: q_quadratic = 2.0_rk / 3.0_rk !< quadratic viscosity coefficient C2
+    logical :: q_limiter = .true. !< monotonic limiter of the viscosity
     integer :: hourglass = HOURGLASS_VISCOUS !< HOURGLASS_* type
     real(rk) :: hourglass_coefficient = 0.1_rk !< Flanagan-Belytschko coefficient
   end type hydro_options_t
@@ -41,6 +42,8 @@ module hydro_state
     real(rk), allocatable :: zone_sound_speed(:)
     real(rk), allocatable :: zone_length(:) !< characteristic length
     real(rk), allocatable :: zone_divergence(:) !< div v = (dV/dt)/V
+    real(rk), allocatable :: zone_gradient(:, :) !< (3, nzone) stretching rates (limiter)
+    real(rk), allocatable :: zone_direction_length(:, :) !< (3, nzone) lengths (limiter)
     real(rk), allocatable :: zone_bmatrix(:, :, :) !< (3, 8, nzone) dV/dx at x^n
     real(rk), allocatable :: zone_hourglass(:, :, :) !< (3, 4, nzone) stiffness state
     real(rk), allocatable :: zone_hourglass_new(:, :, :) !< its update during a cycle
@@ -70,6 +73,9 @@ contains
     allocate(this%zone_viscosity(nzone), this%zone_sound_speed(nzone), this%zone_length(nzone))
     allocate(this%zone_divergence(nzone), this%zone_bmatrix(3, 8, nzone))
     allocate(this%corner_force(3, 8, nzone))
+    allocate(this%zone_gradient(3, nzone), this%zone_direction_length(3, nzone))
+    this%zone_gradient = 0.0_rk
+    this%zone_direction_length = 0.0_rk
     if (stiffness) then
       allocate(this%zone_hourglass(3, 4, nzone), this%zone_hourglass_new(3, 4, nzone))
       this%zone_hourglass = 0.0_rk

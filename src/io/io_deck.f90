@@ -67,7 +67,7 @@ contains
       keys = [character(len=KEY_LEN) :: 'title', 't_end', 'max_cycles', 'deck_version', &
           'restart', 'cfl', 'dt_initial', 'dt_max', 'dt_min', 'dt_growth', 'dvol_max']
     case ('hydro')
-      keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'hourglass', &
+      keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'q_limiter', 'hourglass', &
           'hourglass_coefficient']
     case ('mesh')
       keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
@@ -315,10 +315,12 @@ contains
     type(status_t), intent(inout) :: status
     real(rk) :: q_linear, q_quadratic, hourglass_coefficient
     character(len=32) :: hourglass
+    logical :: q_limiter
     integer :: ios
     character(len=256) :: msg
-    namelist /hydro/ q_linear, q_quadratic, hourglass, hourglass_coefficient
+    namelist /hydro/ q_linear, q_quadratic, q_limiter, hourglass, hourglass_coefficient
 
+    q_limiter = opt%q_limiter
     q_linear = opt%q_linear
     q_quadratic = opt%q_quadratic
     hourglass = 'viscous'
@@ -343,6 +345,7 @@ contains
     end select
     opt%q_linear = q_linear
     opt%q_quadratic = q_quadratic
+    opt%q_limiter = q_limiter
     opt%hourglass_coefficient = hourglass_coefficient
   end subroutine read_hydro
 

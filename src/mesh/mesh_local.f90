@@ -5,6 +5,7 @@
 module mesh_local
   use core_kinds, only: rk, ik, i8
   use mesh_global, only: global_mesh_t, NAME_LEN
+  use mesh_geometry, only: HEX_FACE_NODES
   use parallel_env, only: par_rank
   use parallel_halo, only: halo_t
   use parallel_redistribute, only: redistribute_t
@@ -27,6 +28,9 @@ module mesh_local
     integer, allocatable :: zone_block(:) !< block index of each zone
     integer, allocatable :: corner_start(:) !< CSR over owned nodes, size nnode_owned+1
     integer, allocatable :: corner_list(:) !< corner 8 (z-1) + c, sorted by zone global id
+    integer, allocatable :: face_neighbour(:, :) !< (6, nzone) zone across each face:
+        !< local index, 0 on the mesh boundary, -1 when the neighbour is not local
+    integer, allocatable :: face_neighbour_face(:, :) !< (6, nzone) the neighbour's face
     integer :: nset = 0 !< face sets
     character(len=NAME_LEN), allocatable :: set_name(:)
     integer, allocatable :: set_start(:) !< CSR over local faces of each set
@@ -175,6 +179,8 @@ contains
       end do
     end do
 
+    call build_face_neighbours(global, adj_start, adj_zone, zone_local, mesh)
+
     ! Face sets restricted to local zones, in global order.
     mesh%nset = global%nset
     allocate(mesh%set_name(mesh%nset), mesh%set_start(mesh%nset + 1))
@@ -205,5 +211,34 @@ contains
     call mesh%node_io%init(mesh%node_gid(1:mesh%nnode_owned), mesh%nnode_global)
     call mesh%zone_io%init(mesh%zone_gid(1:mesh%nzone_owned), mesh%nzone_global)
   end subroutine mesh_build_local
+
+  !> Zone across each face of every local zone (same four nodes).
+  subroutine build_face_neighbours(global, adj_start, adj_zone, zone_local, mesh)
+    type(global_mesh_t), intent(in) :: global
+    integer, intent(in) :: adj_start(:), adj_zone(:), zone_local(:)
+    type(mesh_t), intent(inout) :: mesh
+    integer :: k, z, f, s, s2, other, g, nodes(4), onodes(4)
+    allocate(mesh%face_neighbour(6, mesh%nzone), mesh%face_neighbour_face(6, mesh%nzone))
+    mesh%face_neighbour = 0
+    mesh%face_neighbour_face = 0
+    do k = 1, mesh%nzone
+      z = int(mesh%zone_gid(k))
+      do f = 1, 6
+        nodes = global%connectivity(HEX_FACE_NODES(:, f), z)
+        do s = adj_start(nodes(1)), adj_start(nodes(1) + 1) - 1
+          other = adj_zone(s)
+          if (other == z) cycle
+          do g = 1, 6
+            onodes = global%connectivity(HEX_FACE_NODES(:, g), other)
+            if (all([(any(onodes == nodes(s2)), s2 = 1, 4)])) then
+              mesh%face_neighbour(f, k) = zone_local(other)
+              if (zone_local(other) == 0) mesh%face_neighbour(f, k) = -1
+              mesh%face_neighbour_face(f, k) = g
+            end if
+          end do
+        end do
+      end do
+    end do
+  end subroutine build_face_neighbours
 
 end module mesh_local

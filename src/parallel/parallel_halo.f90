@@ -18,7 +18,8 @@ module parallel_halo
   contains
     procedure :: init => halo_init
     procedure :: free => halo_free
-    procedure :: exchange => halo_exchange
+    procedure :: halo_exchange, halo_exchange_scalar
+    generic :: exchange => halo_exchange, halo_exchange_scalar
   end type halo_t
 
 contains
@@ -137,12 +138,25 @@ contains
   subroutine halo_exchange(this, field)
     class(halo_t), intent(inout) :: this
     real(rk), intent(inout) :: field(:, :) !< (ncomp, nlocal)
-    integer :: k, i, c, ncomp, first, count_k, tag
+    call exchange_core(this, size(field, 1), size(field, 2), field)
+  end subroutine halo_exchange
+
+  !> The same for a field with one value per item.
+  subroutine halo_exchange_scalar(this, field)
+    class(halo_t), intent(inout) :: this
+    real(rk), intent(inout) :: field(:) !< (nlocal)
+    call exchange_core(this, 1, size(field), field)
+  end subroutine halo_exchange_scalar
+
+  subroutine exchange_core(this, ncomp, nitem, field)
+    class(halo_t), intent(inout) :: this
+    integer, intent(in) :: ncomp, nitem
+    real(rk), intent(inout) :: field(ncomp, nitem)
+    integer :: k, i, c, first, count_k, tag
     type(MPI_Comm) :: comm
 
     if (this%nneighbour == 0) return
     comm = par_comm()
-    ncomp = size(field, 1)
     if (ncomp * (this%send_start(this%nneighbour + 1) - 1) > size(this%send_buffer)) then
       deallocate(this%send_buffer)
       allocate(this%send_buffer(ncomp * (this%send_start(this%nneighbour + 1) - 1)))
@@ -176,6 +190,6 @@ contains
         field(c, this%recv_index(i)) = this%recv_buffer(ncomp * (i - 1) + c)
       end do
     end do
-  end subroutine halo_exchange
+  end subroutine exchange_core
 
 end module parallel_halo
