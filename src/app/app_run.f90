@@ -3,7 +3,7 @@
 !> MPI finalized, non-zero exit).
 module app_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_value, ieee_quiet_nan
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time
@@ -26,12 +26,13 @@ module app_run
 
   integer, parameter, public :: EXIT_OK = 0, EXIT_INPUT = 1, EXIT_FAILURE = 2, EXIT_INCOMPLETE = 3
   integer, parameter :: FAIL_NONE = 0, FAIL_VOLUME = 1, FAIL_NAN = 2, FAIL_DT = 3
-  integer, parameter :: NRECORD = 8
+  integer, parameter :: NRECORD = 11
 
   !> What the end-of-cycle reduction found.
   type :: control_t
     real(rk) :: dt = huge(1.0_rk) !< stable step
     real(rk) :: dt_zone = 0.0_rk !< global id of the zone that sets it
+    real(rk) :: dt_position(3) = 0.0_rk !< and its centroid
     integer :: dt_reason = DT_CFL
     integer :: fail = FAIL_NONE
     real(rk) :: fail_zone = 0.0_rk !< global id (zone or node)
@@ -187,8 +188,11 @@ contains
         end do
       end if
     end if
-    record = [dt, 0.0_rk, real(reason, rk), real(fail, rk), gid, where]
-    if (zone > 0) record(2) = real(mesh%zone_gid(zone), rk)
+    record = [dt, 0.0_rk, real(reason, rk), real(fail, rk), gid, where, 0.0_rk, 0.0_rk, 0.0_rk]
+    if (zone > 0) then
+      record(2) = real(mesh%zone_gid(zone), rk)
+      record(9:11) = hex_centroid(state%node_position(:, mesh%zone_node(:, zone)))
+    end if
     allocate(all(NRECORD, par_size()))
     call par_allgather(record, all)
     do r = 1, par_size()
@@ -196,6 +200,7 @@ contains
         ctl%dt = all(1, r)
         ctl%dt_zone = all(2, r)
         ctl%dt_reason = nint(all(3, r))
+        ctl%dt_position = all(9:11, r)
       end if
       if (nint(all(4, r)) /= FAIL_NONE .and. ctl%fail == FAIL_NONE) then
         ctl%fail = nint(all(4, r))
@@ -273,10 +278,13 @@ contains
       if (dt < config%hydro%dt_min .and. .not. (last .or. dump_now)) then
         ctl%fail = FAIL_DT
         ctl%fail_zone = ctl%dt_zone
+        ctl%fail_position = ctl%dt_position
         cycle
       end if
       state%dt = dt
 
+      if (state%cycle + 1 == config%fault_cycle .and. config%fault_kind == 'tangle') &
+          call inject_tangle(mesh, state)
       call step(config, mesh, state, mz, bc, dt, bad_half, bad, work)
       state%boundary_work = state%boundary_work + par_sum(work)
       state%time = state%time + dt
@@ -285,6 +293,8 @@ contains
       state%cycle = state%cycle + 1
       state%dt_previous = dt_stable
 
+      if (state%cycle == config%fault_cycle .and. config%fault_kind == 'nan') &
+          call inject_nan(mesh, state)
       if (bad_half > 0) then
         call end_of_cycle_control(mesh, state, config, bad_half, FAIL_VOLUME, ctl)
       else
@@ -332,6 +342,37 @@ contains
     if (par_rank() == 0) write(output_unit, '(a,i0,a,f10.3,a)') 'impact3d: done, ', &
         state%cycle, ' cycles, ', wall_time() - wall_start, ' s'
   end subroutine time_loop
+
+  !> Testing aid (&control fault_nan_cycle): a NaN energy in global zone 1.
+  subroutine inject_nan(mesh, state)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    integer :: z
+    do z = 1, mesh%nzone
+      if (mesh%zone_gid(z) == 1) state%zone_energy(z) = ieee_value(1.0_rk, ieee_quiet_nan)
+    end do
+  end subroutine inject_nan
+
+  !> Testing aid (&control fault_kind = 'tangle'): turn global zone 1 inside
+  !> out by mirroring its nodes through its centroid along x.
+  subroutine inject_tangle(mesh, state)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    integer :: z, k, n
+    real(rk) :: c(3)
+    logical :: moved(mesh%nnode)
+    moved = .false.
+    do z = 1, mesh%nzone
+      if (mesh%zone_gid(z) /= 1) cycle
+      c = hex_centroid(state%node_position(:, mesh%zone_node(:, z)))
+      do k = 1, 8
+        n = mesh%zone_node(k, z)
+        if (moved(n)) cycle
+        state%node_position(1, n) = 2.0_rk * c(1) - state%node_position(1, n)
+        moved(n) = .true.
+      end do
+    end do
+  end subroutine inject_tangle
 
   !> One predictor-corrector cycle from t^n to t^n+1.
   subroutine step(config, mesh, state, mz, bc, dt, bad_half, bad, work)

@@ -45,6 +45,8 @@ module io_deck
     character(len=80) :: title = ''
     real(rk) :: t_end = UNSET
     integer :: max_cycles = 10000000
+    integer :: fault_cycle = 0 !< testing aid: inject a fault at this cycle (0 = never)
+    character(len=8) :: fault_kind = 'nan' !< 'nan' (NaN energy) or 'tangle' (mirror zone 1)
     character(len=PATH_LEN) :: restart = ''
     type(hydro_options_t) :: hydro
     character(len=16) :: mesh_type = 'box'
@@ -65,7 +67,8 @@ contains
     select case (group)
     case ('control')
       keys = [character(len=KEY_LEN) :: 'title', 't_end', 'max_cycles', 'deck_version', &
-          'restart', 'cfl', 'dt_initial', 'dt_max', 'dt_min', 'dt_growth', 'dvol_max']
+          'restart', 'cfl', 'dt_initial', 'dt_max', 'dt_min', 'dt_growth', 'dvol_max', &
+          'fault_cycle', 'fault_kind']
     case ('hydro')
       keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'q_limiter', 'hourglass', &
           'hourglass_coefficient']
@@ -257,14 +260,17 @@ contains
     character(len=80) :: title
     character(len=PATH_LEN) :: restart
     real(rk) :: t_end, cfl, dt_initial, dt_max, dt_min, dt_growth, dvol_max
-    integer :: max_cycles, deck_version, ios
+    integer :: max_cycles, deck_version, ios, fault_cycle
+    character(len=8) :: fault_kind
     character(len=256) :: msg
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
-        dt_max, dt_min, dt_growth, dvol_max
+        dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind
 
     title = config%title
     t_end = config%t_end
     max_cycles = config%max_cycles
+    fault_cycle = 0
+    fault_kind = 'nan'
     deck_version = DECK_VERSION
     restart = ''
     cfl = config%hydro%cfl
@@ -284,6 +290,11 @@ contains
       call status%add('&control: t_end: must be > 0')
     end if
     if (max_cycles < 1) call status%add('&control: max_cycles: must be >= 1')
+    if (fault_cycle < 0) call status%add('&control: fault_cycle: must be >= 0')
+    if (fault_kind /= 'nan' .and. fault_kind /= 'tangle') call status%add('&control: '// &
+        'fault_kind: '''//trim(fault_kind)//''' is not a fault (valid: nan, tangle)')
+    config%fault_cycle = fault_cycle
+    config%fault_kind = fault_kind
     if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
         'in (0, 1]')
     if (dt_initial < 0.0_rk) call status%add('&control: dt_initial: must be >= 0 '// &

@@ -1,0 +1,383 @@
+#!/usr/bin/python3
+"""Bad-deck regression test for impact3d.
+
+Usage: bad_decks.py /path/to/impact3d [--mpiexec mpirun --np 2] [--verbose]
+
+Each case starts from a small valid deck (a 10 x 1 x 1 Sod-like box whose
+&output directory is the case's own temporary directory), plants one defect
+(or, for the "every problem at once" case, several), runs the program in a
+fresh temporary directory and checks that
+
+  1. the exit code is 1 (input error),
+  2. stderr holds every expected message fragment (group, key and a word of
+     the reason, as in `input error: &control: t_end: required ...`),
+  3. no *.h5 dump and no history.txt was written in the case directory,
+  4. the summary line `impact3d: N input error(s); nothing was run` is there,
+     and N is the number of `input error:` lines printed.
+
+A last case runs the base deck itself and must exit 0, so that the failures
+above are known to come from the planted defects. Standard library only.
+"""
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+CASE_TIMEOUT = 30.0  # seconds per run
+
+# The valid base deck. {dir} becomes the case directory (also the working
+# directory) after a case's edits, so edits may use {dir} too.
+BASE_DECK = """\
+! bad_decks.py base deck: Sod-like shock tube, 10 x 1 x 1 zones, symmetry walls.
+&control
+  title = 'bad-deck base'
+  t_end = 0.05
+  cfl = 0.5
+/
+&mesh
+  type = 'box'
+  x = 0.0, 1.0
+  nx = 10
+  y = 0.0, 0.1
+  ny = 1
+  z = 0.0, 0.1
+  nz = 1
+/
+&material
+  name = 'gas', eos = 'ideal_gas', gamma = 1.4
+/
+&block
+  name = 'tube', material = 'gas'
+/
+&region
+  density = 1.0, pressure = 1.0, box = 0.0, 0.5, -1, 1, -1, 1
+/
+&region
+  density = 0.125, pressure = 0.1, box = 0.5, 1.0, -1, 1, -1, 1
+/
+&boundary set = 'xmin', type = 'symmetry' /
+&boundary set = 'xmax', type = 'symmetry' /
+&boundary set = 'ymin', type = 'symmetry' /
+&boundary set = 'ymax', type = 'symmetry' /
+&boundary set = 'zmin', type = 'symmetry' /
+&boundary set = 'zmax', type = 'symmetry' /
+&output
+  directory = '{dir}'
+  status_every = 100
+/
+"""
+
+SUMMARY = re.compile(r"^impact3d: (\d+) input error\(s\); nothing was run$", re.M)
+
+
+class DeckEditError(Exception):
+    """A case's edit did not apply to the base deck (a bug in this script)."""
+
+
+def sub(old, new, count=1):
+    """Edit: replace the first `count` occurrences of `old`; `old` must be there."""
+
+    def edit(text):
+        if text.count(old) < count:
+            raise DeckEditError("%r occurs %d time(s), need %d" % (old, text.count(old), count))
+        return text.replace(old, new, count)
+
+    return edit
+
+
+def chain(*edits):
+    def edit(text):
+        for e in edits:
+            text = e(text)
+        return text
+
+    return edit
+
+
+def remove_group(header):
+    """Edit: delete the whole group that starts with the line `header`."""
+
+    def edit(text):
+        start = text.find(header + "\n")
+        if start < 0:
+            raise DeckEditError("group %r not found" % header)
+        end = text.find("\n/\n", start)
+        return text[:start] + text[end + 3:]
+
+    return edit
+
+
+def append(extra):
+    return lambda text: text + extra
+
+
+class Case:
+    def __init__(self, name, edit, expect, min_errors=1, deck_arg=None, expect_code=1):
+        self.name = name
+        self.edit = edit  # base text -> bad text
+        self.expect = expect  # fragments that must all appear in stderr
+        self.min_errors = min_errors
+        self.deck_arg = deck_arg  # callable(case_dir, deck_path) -> program argument
+        self.expect_code = expect_code
+
+
+def build_cases():
+    c = []
+    # --- groups and keys -------------------------------------------------
+    c.append(Case("unknown_group", sub("&control\n", "&contorl\n"),
+                  ["&contorl: unknown group", "valid groups: control",
+                   "&control: required group is missing"], min_errors=2))
+    c.append(Case("every_problem_at_once",
+                  chain(sub("  t_end = 0.05\n", "  tend = 0.05\n"),
+                        sub("  cfl = 0.5\n", "  cfl = 1.3\n")),
+                  ["&control: tend: unknown key", "valid keys: title, t_end",
+                   "&control: t_end: required",
+                   "&control: cfl: must be in (0, 1]"], min_errors=3))
+    c.append(Case("unknown_key_other_group",
+                  sub("name = 'gas', eos", "name = 'gas', gama = 1.4, eos"),
+                  ["&material: gama: unknown key", "valid keys: name, eos, gamma"]))
+    c.append(Case("syntax_error_in_value", sub("  nx = 10\n", "  nx = 1o\n"),
+                  ["&mesh: cannot read the group"]))
+    c.append(Case("syntax_error_in_real",
+                  sub("gamma = 1.4", "gamma = 1.4.2"),
+                  ["&material(1): cannot read the group"]))
+    c.append(Case("missing_mesh_group", remove_group("&mesh"),
+                  ["&mesh: required group is missing"]))
+    c.append(Case("missing_material_group", remove_group("&material"),
+                  ["&material: at least one is required"]))
+    c.append(Case("duplicate_control",
+                  append("&control\n  t_end = 1.0\n/\n"),
+                  ["&control: group given more than once"]))
+    c.append(Case("group_never_closed",
+                  sub("  status_every = 100\n/\n", "  status_every = 100\n"),
+                  ["&output: group opened on line", "never closed with '/'"]))
+    c.append(Case("group_never_closed_middle",
+                  sub("gamma = 1.4\n/\n", "gamma = 1.4\n"),
+                  ["&material: group opened on line", "never closed with '/'"]))
+    c.append(Case("text_outside_group",
+                  sub("&mesh\n", "t_end = 1.0\n&mesh\n"),
+                  ["text outside any group", "t_end = 1.0"]))
+    # --- &control ----------------------------------------------------------
+    c.append(Case("control_t_end_missing", sub("  t_end = 0.05\n", ""),
+                  ["&control: t_end: required"]))
+    c.append(Case("control_t_end_negative", sub("  t_end = 0.05\n", "  t_end = -1.0\n"),
+                  ["&control: t_end: must be > 0"]))
+    c.append(Case("control_dt_min_ge_dt_max",
+                  sub("  cfl = 0.5\n", "  cfl = 0.5\n  dt_min = 1.0e-3\n  dt_max = 1.0e-4\n"),
+                  ["&control: dt_min: must be smaller than dt_max"]))
+    c.append(Case("control_restart_missing_file",
+                  sub("  cfl = 0.5\n", "  cfl = 0.5\n  restart = '{dir}/no_such_dump.h5'\n"),
+                  ["&control: restart: file", "no_such_dump.h5' does not exist"]))
+    c.append(Case("control_deck_version", sub("  cfl = 0.5\n", "  cfl = 0.5\n  deck_version = 2\n"),
+                  ["&control: deck_version: this code reads deck version 1"]))
+    # --- &hydro --------------------------------------------------------------
+    c.append(Case("hydro_unknown_hourglass", append("&hydro hourglass = 'magic' /\n"),
+                  ["&hydro: hourglass: 'magic' is not a hourglass control"]))
+    # --- &mesh ---------------------------------------------------------------
+    c.append(Case("mesh_nx_missing", sub("  nx = 10\n", ""),
+                  ["&mesh: nx: required"]))
+    c.append(Case("mesh_points_not_increasing", sub("  x = 0.0, 1.0\n", "  x = 1.0, 0.0\n"),
+                  ["&mesh: x: points must increase"]))
+    c.append(Case("mesh_wrong_number_of_points",
+                  sub("  y = 0.0, 0.1\n", "  y = 0.0, 0.05, 0.1\n"),
+                  ["&mesh: y: needs one more point than ny"]))
+    c.append(Case("mesh_ratio_not_positive", sub("  nx = 10\n", "  nx = 10\n  ratio_x = -2.0\n"),
+                  ["&mesh: ratio_x: must be > 0"]))
+    c.append(Case("mesh_zero_zones", sub("  nz = 1\n", "  nz = 0, 3\n"),
+                  ["&mesh: nz: every interval needs >= 1 zone"]))
+    c.append(Case("mesh_unknown_type", sub("  type = 'box'\n", "  type = 'cylinder'\n"),
+                  ["&mesh: type: 'cylinder' is not a mesh type", "valid: box"]))
+    # --- &material -------------------------------------------------------------
+    c.append(Case("material_name_missing", sub("name = 'gas', eos", "eos"),
+                  ["&material(1): name: required"]))
+    c.append(Case("material_duplicate_name",
+                  sub("&block\n", "&material\n  name = 'gas', eos = 'ideal_gas', gamma = 1.67\n/\n"
+                      "&block\n"),
+                  ["&material", "name: 'gas' is given twice"]))
+    c.append(Case("material_unknown_eos", sub("eos = 'ideal_gas'", "eos = 'stiffened_gas'"),
+                  ["&material(1): eos: 'stiffened_gas' is not an equation of state",
+                   "valid: ideal_gas"]))
+    c.append(Case("material_eos_missing", sub("eos = 'ideal_gas', ", ""),
+                  ["&material(1): eos: required"]))
+    c.append(Case("material_gamma_not_above_one", sub("gamma = 1.4", "gamma = 1.0"),
+                  ["&material(1): gamma: must be > 1"]))
+    c.append(Case("material_gamma_missing", sub(", gamma = 1.4", ""),
+                  ["&material(1): gamma: required for eos = 'ideal_gas'"]))
+    # --- &block ----------------------------------------------------------------
+    c.append(Case("block_unknown_material", sub("material = 'gas'", "material = 'air'"),
+                  ["&block(1): material: 'air' is not a material of this deck"]))
+    c.append(Case("block_box_min_gt_max",
+                  sub("name = 'tube', material = 'gas'",
+                      "name = 'tube', material = 'gas', box = 1.0, 0.0, -1, 1, -1, 1"),
+                  ["&block(1): box: needs xmin <= xmax"]))
+    c.append(Case("block_zones_in_no_block",
+                  sub("name = 'tube', material = 'gas'",
+                      "name = 'tube', material = 'gas', box = 0.0, 0.5, -1, 1, -1, 1"),
+                  ["&block: box: 5 zones lie in no block's box"]))
+    # --- &region ---------------------------------------------------------------
+    c.append(Case("region_unknown_block",
+                  sub("  density = 1.0, pressure = 1.0,",
+                      "  block = 'pipe', density = 1.0, pressure = 1.0,"),
+                  ["&region(1): block: 'pipe' is not a block of this deck"]))
+    c.append(Case("region_energy_and_pressure",
+                  sub("  density = 0.125, pressure = 0.1,",
+                      "  density = 0.125, energy = 2.0, pressure = 0.1,"),
+                  ["&region(2): pressure: give energy or pressure, not both"]))
+    c.append(Case("region_negative_density",
+                  sub("  density = 0.125,", "  density = -0.125,"),
+                  ["&region(2): density: must be > 0"]))
+    c.append(Case("region_no_density",
+                  sub("  density = 0.125, pressure = 0.1,", "  energy = 2.0,"),
+                  ["&region: some zones get no density from any region"]))
+    c.append(Case("region_pressure_without_density",
+                  sub("  density = 0.125, pressure = 0.1,", "  pressure = 0.1,"),
+                  ["&region(2): pressure: needs density in the same region"]))
+    # --- &boundary -------------------------------------------------------------
+    c.append(Case("boundary_unknown_set", sub("set = 'xmax'", "set = 'xhigh'"),
+                  ["&boundary", "set = 'xhigh'", "no such face set"]))
+    c.append(Case("boundary_unknown_type",
+                  sub("set = 'xmax', type = 'symmetry'", "set = 'xmax', type = 'wall'"),
+                  ["&boundary(2): type: 'wall' is not a boundary condition",
+                   "valid: free, symmetry, velocity, pressure"]))
+    c.append(Case("boundary_velocity_without_velocity",
+                  sub("set = 'xmin', type = 'symmetry'", "set = 'xmin', type = 'velocity'"),
+                  ["&boundary(1): velocity: required (3 components) for type = 'velocity'"]))
+    c.append(Case("boundary_pressure_on_symmetry",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'symmetry', pressure = 1.0"),
+                  ["&boundary(2): pressure: only for type = 'pressure'"]))
+    c.append(Case("boundary_set_missing",
+                  sub("set = 'zmax', type = 'symmetry'", "type = 'symmetry'"),
+                  ["&boundary(6): set: required"]))
+    # --- &output ---------------------------------------------------------------
+    c.append(Case("output_directory_missing",
+                  sub("  directory = '{dir}'\n", "  directory = '{dir}/no_such_dir'\n"),
+                  ["&output: directory:", "no_such_dir' does not exist"]))
+    c.append(Case("output_prefix_with_slash",
+                  sub("  status_every = 100\n", "  status_every = 100\n  prefix = 'run/a'\n"),
+                  ["&output: prefix: must be a non-empty file name without '/'"]))
+    c.append(Case("output_status_every_zero",
+                  sub("  status_every = 100\n", "  status_every = 0\n"),
+                  ["&output: status_every: must be >= 1"]))
+    # --- the program argument ------------------------------------------------------
+    c.append(Case("deck_file_missing", lambda t: t,
+                  ["deck: file", "no_such_deck.nml", "does not exist"],
+                  deck_arg=lambda d, p: os.path.join(d, "no_such_deck.nml")))
+    # --- sanity: the base deck itself runs -------------------------------------------
+    c.append(Case("valid_base_deck", lambda t: t, [], expect_code=0))
+    return c
+
+
+def written_outputs(case_dir):
+    found = []
+    for root, _dirs, files in os.walk(case_dir):
+        for f in files:
+            if f.endswith(".h5") or f == "history.txt":
+                found.append(os.path.relpath(os.path.join(root, f), case_dir))
+    return sorted(found)
+
+
+def run_case(case, program, launcher, top):
+    case_dir = tempfile.mkdtemp(prefix=case.name[:20] + "_", dir=top)
+    try:
+        text = case.edit(BASE_DECK).replace("{dir}", case_dir)
+    except DeckEditError as err:
+        return False, "deck edit did not apply: %s" % err, ""
+    deck = os.path.join(case_dir, "deck.nml")
+    with open(deck, "w") as f:
+        f.write(text)
+    arg = case.deck_arg(case_dir, deck) if case.deck_arg else deck
+    env = dict(os.environ)
+    env.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               OMPI_MCA_rmaps_base_oversubscribe="1")
+    cmd = launcher + [program, arg]
+    try:
+        proc = subprocess.run(cmd, cwd=case_dir, env=env, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, timeout=CASE_TIMEOUT,
+                              universal_newlines=True)
+    except subprocess.TimeoutExpired as err:
+        return False, "timed out after %.0f s" % CASE_TIMEOUT, str(err.stderr or "")
+    except OSError as err:
+        return False, "cannot run %s: %s" % (" ".join(cmd), err), ""
+    err_text = proc.stderr
+    why = []
+    if proc.returncode != case.expect_code:
+        why.append("exit code %d, expected %d" % (proc.returncode, case.expect_code))
+    outputs = written_outputs(case_dir)
+    if case.expect_code == 0:
+        if not any(o.endswith(".h5") for o in outputs) or "history.txt" not in outputs:
+            why.append("valid run wrote no dump/history (found %s)" % outputs)
+        if "input error" in err_text:
+            why.append("valid run reported input errors")
+    else:
+        for frag in case.expect:
+            if frag not in err_text:
+                why.append("stderr lacks %r" % frag)
+        if outputs:
+            why.append("output written: %s" % ", ".join(outputs))
+        m = SUMMARY.search(err_text)
+        if not m:
+            why.append("no summary line 'impact3d: N input error(s); nothing was run'")
+        else:
+            n = int(m.group(1))
+            lines = len(re.findall(r"^input error: ", err_text, re.M))
+            if n < case.min_errors:
+                why.append("summary counts %d error(s), expected at least %d"
+                           % (n, case.min_errors))
+            if n != lines:
+                why.append("summary counts %d error(s) but %d 'input error:' lines were "
+                           "printed" % (n, lines))
+            if len(SUMMARY.findall(err_text)) != 1:
+                why.append("summary line printed %d times" % len(SUMMARY.findall(err_text)))
+    if not why:
+        shutil.rmtree(case_dir, ignore_errors=True)
+    return not why, "; ".join(why), err_text
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("program", help="path to the impact3d executable")
+    p.add_argument("--mpiexec", help="MPI launcher (e.g. mpirun)")
+    p.add_argument("--np", type=int, default=2, help="ranks with --mpiexec (default 2)")
+    p.add_argument("--verbose", action="store_true", help="print stderr of every case")
+    p.add_argument("--keep", action="store_true", help="keep the temporary directories")
+    args = p.parse_args()
+
+    program = os.path.abspath(args.program)
+    if not os.access(program, os.X_OK):
+        print("bad_decks.py: %s is not an executable" % program)
+        return 1
+    launcher = []
+    if args.mpiexec:
+        launcher = [args.mpiexec, "-np", str(args.np)]
+
+    top = tempfile.mkdtemp(prefix="impact3d_bad_decks_")
+    passed = failed = 0
+    try:
+        for case in build_cases():
+            ok, why, err_text = run_case(case, program, launcher, top)
+            if ok:
+                passed += 1
+                print("PASS %s" % case.name)
+                if args.verbose:
+                    print("  | " + "\n  | ".join(err_text.rstrip("\n").split("\n")))
+            else:
+                failed += 1
+                print("FAIL %s: %s" % (case.name, why))
+                print("  stderr:\n  | " + "\n  | ".join(err_text.rstrip("\n").split("\n")))
+            sys.stdout.flush()
+    finally:
+        if args.keep or failed:
+            print("(case directories kept under %s)" % top)
+        else:
+            shutil.rmtree(top, ignore_errors=True)
+    print("%d passed, %d failed" % (passed, failed))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,199 @@
+#!/usr/bin/python3
+"""Regression checks of impact3d runs, each on an exact or physical criterion.
+
+Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
+  bitwise  --deck D --ranks 1 2 3 4   dumps of every rank count identical (h5diff, no
+                                      tolerance, /run excluded: it holds run metadata)
+  restart  --deck D --np A --restart-np B --from-cycle C
+                                      a run restarted from its cycle-C dump on B ranks
+                                      ends bitwise identical to the uninterrupted run
+  energy   --deck D --np N --tol T    max |relative total-energy error| in history.txt <= T
+  failure  --deck D --np N --expect volume|nan|dt
+                                      exit code 2, the message names zone/node, position,
+                                      cycle and time, and a final *_failed.h5 dump exists
+  compare  --deck D --np N --problem P --max KEY=VALUE ... --min KEY=VALUE ...
+                                      run, compare the final dump with the exact solution
+                                      (tools/compare.py) and check the summary values
+Prints 'N passed, M failed' and exits 1 on failure.
+"""
+import argparse
+import glob
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOLS = os.path.join(HERE, "..", "..", "tools")
+sys.path.insert(0, TOOLS)
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+results = []
+
+
+def check(name, ok, detail=""):
+    results.append(ok)
+    print(("PASS " if ok else "FAIL ") + name + (": " + detail if detail else ""))
+    sys.stdout.flush()
+
+
+def run(args, np, workdir, deck, extra=()):
+    """Run the program on np ranks in a fresh workdir; return (code, stdout, stderr)."""
+    if os.path.isdir(workdir):
+        shutil.rmtree(workdir)
+    os.makedirs(workdir)
+    shutil.copy(deck, os.path.join(workdir, "deck.nml"))
+    cmd = [args.mpiexec, "-np", str(np), args.exe] + list(extra) + ["deck.nml"]
+    proc = subprocess.run(cmd, cwd=workdir, env=ENV, capture_output=True, text=True)
+    return proc.returncode, proc.stdout, proc.stderr
+
+
+def final_dump(workdir):
+    dumps = sorted(glob.glob(os.path.join(workdir, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
+    return dumps[-1] if dumps else None
+
+
+def h5same(a, b):
+    proc = subprocess.run(["h5diff", "--exclude-path", "/run", a, b], capture_output=True,
+                          text=True)
+    return proc.returncode == 0, proc.stdout[-2000:]
+
+
+def cmd_bitwise(args):
+    ref = None
+    for np in args.ranks:
+        wd = os.path.join(args.workdir, "np%d" % np)
+        code, out, err = run(args, np, wd, args.deck)
+        check("run on %d rank(s) exits 0" % np, code == 0, err[-2000:])
+        if code != 0:
+            return
+        dumps = sorted(os.path.basename(p) for p in glob.glob(os.path.join(wd, "*.h5")))
+        if ref is None:
+            ref = (wd, dumps)
+            check("dumps written", len(dumps) >= 2, " ".join(dumps))
+            continue
+        check("%d ranks wrote the same dumps as %d" % (np, args.ranks[0]), dumps == ref[1])
+        for name in ref[1]:
+            same, diff = h5same(os.path.join(ref[0], name), os.path.join(wd, name))
+            check("%s bitwise identical on %d and %d ranks" % (name, args.ranks[0], np), same,
+                  diff)
+
+
+def cmd_restart(args):
+    wd = os.path.join(args.workdir, "full")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("uninterrupted run exits 0", code == 0, err[-2000:])
+    full = final_dump(wd)
+    start = os.path.join(wd, "dump_%06d.h5" % args.from_cycle)
+    check("mid-run dump exists", os.path.exists(start), start)
+    if code != 0 or not os.path.exists(start):
+        return
+    wr = os.path.join(args.workdir, "restarted")
+    code, out, err = run(args, args.restart_np, wr, args.deck,
+                         extra=["--restart", os.path.abspath(start)])
+    check("restarted run on %d rank(s) exits 0" % args.restart_np, code == 0, err[-2000:])
+    if code != 0:
+        return
+    mine = os.path.join(wr, os.path.basename(full))
+    check("restarted run ends at the same cycle", os.path.exists(mine), mine)
+    if os.path.exists(mine):
+        same, diff = h5same(full, mine)
+        check("final dump bitwise identical after restart", same, diff)
+
+
+def cmd_energy(args):
+    wd = os.path.join(args.workdir, "energy")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    with open(os.path.join(wd, "history.txt")) as f:
+        header = f.readline().split()[1:]
+        rows = [line.split() for line in f if line.strip()]
+    col = header.index("energy_error")
+    worst = max(abs(float(r[col])) for r in rows)
+    check("history has the run's cycles", len(rows) > 10, "%d rows" % len(rows))
+    check("max |relative energy error| %.3e <= %.1e" % (worst, args.tol), worst <= args.tol)
+
+
+def cmd_failure(args):
+    wd = os.path.join(args.workdir, "failure")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("exit code is 2", code == 2, "got %d; stderr: %s" % (code, err[-2000:]))
+    what = {"volume": r"zero or negative volume in zone",
+            "nan": r"NaN (?:energy in zone|velocity at node)",
+            "dt": r"time step below dt_min, set by zone"}[args.expect]
+    pattern = what + r" (\d+) at \(\s*(\S+)\s+(\S+)\s+(\S+)\) in cycle (\d+), time\s+(\S+)"
+    m = re.search(pattern, err)
+    check("message names the zone, its position, the cycle and the time", m is not None,
+          err[-2000:])
+    if m:
+        pos = [float(m.group(i)) for i in (2, 3, 4)]
+        check("reported position is finite", all(abs(p) < 1e300 for p in pos), str(pos))
+    failed = glob.glob(os.path.join(wd, "*_failed.h5"))
+    check("a final dump was written", len(failed) == 1, str(failed))
+    if failed and m:
+        import dump
+        d = dump.load(failed[0])
+        check("final dump is at the failing cycle", int(d["attrs"]["cycle"]) == int(m.group(5)))
+
+
+def cmd_compare(args):
+    wd = os.path.join(args.workdir, "compare")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    cmd = ["/usr/bin/python3", os.path.join(TOOLS, "compare.py"), "--problem", args.problem,
+           final_dump(wd), "--out", os.path.join(wd, "summary.txt")] + args.compare_args
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    check("compare.py runs", proc.returncode == 0, proc.stderr[-2000:])
+    values = {}
+    for line in proc.stdout.splitlines():
+        if "=" in line:
+            k, v = line.split("=", 1)
+            try:
+                values[k.strip()] = float(v)
+            except ValueError:
+                pass
+    for spec in args.max or []:
+        k, v = spec.split("=")
+        got = values.get(k, float("nan"))
+        check("%s = %.4e <= %s" % (k, got, v), got <= float(v))
+    for spec in args.min or []:
+        k, v = spec.split("=")
+        got = values.get(k, float("nan"))
+        check("%s = %.4e >= %s" % (k, got, v), got >= float(v))
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare"])
+    p.add_argument("--exe", required=True)
+    p.add_argument("--mpiexec", default="mpirun")
+    p.add_argument("--workdir", required=True)
+    p.add_argument("--deck", required=True)
+    p.add_argument("--ranks", type=int, nargs="+", default=[1, 2, 3, 4])
+    p.add_argument("--np", type=int, default=1)
+    p.add_argument("--restart-np", type=int, default=1)
+    p.add_argument("--from-cycle", type=int, default=0)
+    p.add_argument("--tol", type=float, default=1e-12)
+    p.add_argument("--expect", choices=["volume", "nan", "dt"], default="volume")
+    p.add_argument("--problem")
+    p.add_argument("--max", action="append")
+    p.add_argument("--min", action="append")
+    p.add_argument("compare_args", nargs="*", help="extra arguments for compare.py (after --)")
+    args = p.parse_args()
+    args.deck = os.path.abspath(args.deck)
+    args.exe = os.path.abspath(args.exe)
+    globals()["cmd_" + args.command](args)
+    npass = sum(results)
+    print("%d passed, %d failed" % (npass, len(results) - npass))
+    sys.exit(0 if results and all(results) else 1)
+
+
+if __name__ == "__main__":
+    main()
