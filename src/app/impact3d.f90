@@ -59,7 +59,7 @@ program impact3d
       code)
   call par_finalize()
   ! Variable stop codes are Fortran 2018; the codes are few. STOP with a code
-  ! sets the exit status without the runtime's backtrace (the message is out).
+  ! sets the exit status without a runtime backtrace (the real message is out).
   select case (code)
   case (EXIT_OK)
     continue

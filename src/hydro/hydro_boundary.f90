@@ -62,8 +62,9 @@ contains
     do ib = 1, size(specs)
       s = global%find_set(specs(ib)%set)
       if (s == 0) then
-        call status%add('&boundary: set = '''//trim(specs(ib)%set)// &
-            ''': no such face set in the mesh')
+        write(text, '(i0)') ib
+        call status%add('&boundary('//trim(text)//'): set: '''//trim(specs(ib)%set)// &
+            ''' is not a face set of the mesh (valid: '//set_list(global)//')')
         cycle
       end if
       if (specs(ib)%kind /= BC_SYMMETRY) cycle
@@ -74,8 +75,9 @@ contains
         total = total + quad_vector_area(p)
       end do
       if (norm2(total) <= 0.0_rk) then
-        call status%add('&boundary: set = '''//trim(specs(ib)%set)// &
-            ''': symmetry set has no area')
+        write(text, '(i0)') ib
+        call status%add('&boundary('//trim(text)//'): set: '''//trim(specs(ib)%set)// &
+            ''' has no area, so it cannot be a symmetry plane')
         cycle
       end if
       normal(:, ib) = total / norm2(total)
@@ -84,9 +86,9 @@ contains
         p = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, global%set_face(f)), z))
         area = quad_vector_area(p)
         if (dot_product(area, normal(:, ib)) < (1.0_rk - 1.0e-10_rk) * norm2(area)) then
-          write(text, '(i0)') f - global%set_start(s) + 1
-          call status%add('&boundary: set = '''//trim(specs(ib)%set)//''': type = ''symmetry'''// &
-              ' needs a plane, but face '//trim(text)//' is not in the plane of the set')
+          write(text, '(i0)') ib
+          call status%add('&boundary('//trim(text)//'): type: ''symmetry'' needs a plane, '// &
+              'but set '''//trim(specs(ib)%set)//''' is not planar')
           exit
         end if
       end do
@@ -221,6 +223,17 @@ contains
     end subroutine add_direction
 
   end subroutine boundary_setup
+
+  function set_list(global) result(text)
+    type(global_mesh_t), intent(in) :: global
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    do k = 1, global%nset
+      if (k > 1) text = text//', '
+      text = text//trim(global%set_name(k))
+    end do
+  end function set_list
 
   integer function set_index(mesh, name) result(s)
     type(mesh_t), intent(in) :: mesh

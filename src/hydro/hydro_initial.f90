@@ -76,7 +76,7 @@ contains
     end do
     missing = real(count(state%zone_density(1:mesh%nzone_owned) == UNSET), rk)
     if (par_sum(missing) > 0.0_rk) then
-      call status%add('&region: some zones get no density from any region '// &
+      call status%add('&region: density: some zones get no density from any region '// &
           '(give density in a region that covers every block)')
       return
     end if

@@ -95,7 +95,9 @@ contains
       do k = 1, 8
         force(:, k, z) = ptot * b(:, k, z)
       end do
-      if (hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS) then
+      ! A tangled zone (the run stops at the end of the cycle) gets no hourglass force.
+      if ((hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS) .and. &
+          volume(z) > 0.0_rk) then
         do k = 1, 8
           node = zone_node(k, z)
           xz(:, k) = x(:, node)

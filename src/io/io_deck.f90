@@ -5,7 +5,7 @@
 module io_deck
   use core_kinds, only: rk
   use core_status, only: status_t
-  use io_deck_scan, only: deck_scan, group_instance_t, to_lower, LINE_LEN, KEY_LEN
+  use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
   use material_table, only: material_t, EOS_IDEAL_GAS
   use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
@@ -16,7 +16,7 @@ module io_deck
   private
   public :: deck_read, deck_known_keys
 
-  integer, parameter, public :: DECK_VERSION = 1
+  integer, parameter, public :: DECK_FORMAT_VERSION = 1
   integer, parameter, public :: PATH_LEN = 256
   integer, parameter :: NGROUP_KNOWN = 8
   character(len=*), parameter :: GROUP_NAMES(NGROUP_KNOWN) = [character(len=8) :: &
@@ -40,6 +40,11 @@ module io_deck
     integer :: history_every = 1 !< cycles between history lines
   end type output_options_t
 
+  !> A group's text as read (unknown keys blanked).
+  type :: section_t
+    character(len=LINE_LEN), allocatable :: text(:)
+  end type section_t
+
   !> Everything the deck says.
   type, public :: config_t
     character(len=80) :: title = ''
@@ -56,6 +61,7 @@ module io_deck
     type(region_t), allocatable :: regions(:)
     type(boundary_spec_t), allocatable :: boundaries(:)
     type(output_options_t) :: output
+    logical :: materials_read = .true. !< false when a &material could not be read
   end type config_t
 
 contains
@@ -104,6 +110,7 @@ contains
     integer :: nline, ngroup, ig, ik, k, counts(NGROUP_KNOWN)
     character(len=KEY_LEN), allocatable :: known(:)
     logical :: found
+    type(section_t), allocatable :: sections(:)
 
     call read_lines(path, lines, nline, status)
     if (.not. status%ok()) return
@@ -146,13 +153,19 @@ contains
             ': at least one is required')
       end select
     end do
-    if (.not. status%ok()) return
+    ! Read every known group, unknown keys blanked out, so that every problem
+    ! of the deck is reported in this one run.
 
     allocate(config%materials(counts(4)), config%blocks(counts(5)), config%regions(counts(6)))
     allocate(config%boundaries(counts(7)))
     counts = 0
+    allocate(sections(ngroup))
     do ig = 1, ngroup
-      associate(sect => lines(groups(ig)%first_line:groups(ig)%last_line))
+      known = deck_known_keys(trim(groups(ig)%name))
+      sections(ig)%text = group_text(lines, groups(ig), known)
+    end do
+    do ig = 1, ngroup
+      associate(sect => sections(ig)%text)
         select case (trim(groups(ig)%name))
         case ('control')
           call read_control(sect, config, status)
@@ -162,7 +175,8 @@ contains
           call read_mesh(sect, config, status)
         case ('material')
           counts(4) = counts(4) + 1
-          call read_material(sect, counts(4), config%materials(counts(4)), status)
+          call read_material(sect, counts(4), config%materials(counts(4)), status, &
+              config%materials_read)
         case ('output')
           call read_output(sect, config%output, status)
         end select
@@ -171,7 +185,7 @@ contains
     ! Groups that refer to others by name come after those are known.
     call check_material_names(config, status)
     do ig = 1, ngroup
-      associate(sect => lines(groups(ig)%first_line:groups(ig)%last_line))
+      associate(sect => sections(ig)%text)
         select case (trim(groups(ig)%name))
         case ('block')
           counts(5) = counts(5) + 1
@@ -235,7 +249,10 @@ contains
       end if
     end if
     call par_bcast(nline)
-    if (nline == -1) then
+    if (nline == 0) then
+      call status%add('deck: file '''//trim(path)//''' is empty or not a text file')
+      return
+    else if (nline == -1) then
       call status%add('deck: file '''//trim(path)//''' does not exist')
       return
     else if (nline == -2) then
@@ -271,7 +288,7 @@ contains
     max_cycles = config%max_cycles
     fault_cycle = 0
     fault_kind = 'nan'
-    deck_version = DECK_VERSION
+    deck_version = DECK_FORMAT_VERSION
     restart = ''
     cfl = config%hydro%cfl
     dt_initial = config%hydro%dt_initial
@@ -282,7 +299,7 @@ contains
     read(sect, nml=control, iostat=ios, iomsg=msg)
     call nml_error('control', ios, msg, status)
     if (ios /= 0) return
-    if (deck_version /= DECK_VERSION) call status%add('&control: deck_version: this code '// &
+    if (deck_version /= DECK_FORMAT_VERSION) call status%add('&control: deck_version: this code '// &
         'reads deck version 1 only')
     if (t_end == UNSET) then
       call status%add('&control: t_end: required (end time of the run, > 0)')
@@ -437,11 +454,12 @@ contains
 
   end subroutine read_mesh
 
-  subroutine read_material(sect, index, mat, status)
+  subroutine read_material(sect, index, mat, status, read_ok)
     character(len=LINE_LEN), intent(in) :: sect(:)
     integer, intent(in) :: index
     type(material_t), intent(inout) :: mat
     type(status_t), intent(inout) :: status
+    logical, intent(inout) :: read_ok !< set false when the group cannot be read
     character(len=NAME_LEN) :: name
     character(len=32) :: eos
     real(rk) :: gamma
@@ -457,6 +475,7 @@ contains
     read(sect, nml=material, iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(trim(where)//': cannot read the group: '//trim(msg))
+      read_ok = .false.
       return
     end if
     if (len_trim(name) == 0) call status%add(trim(where)//': name: required')
@@ -527,7 +546,7 @@ contains
     end do
     if (len_trim(material) == 0) then
       call status%add(trim(where)//': material: required')
-    else if (config%blocks(index)%material == 0) then
+    else if (config%blocks(index)%material == 0 .and. config%materials_read) then
       call status%add(trim(where)//': material: '''//trim(material)// &
           ''' is not a material of this deck')
     end if

@@ -1,22 +1,26 @@
 !> Lexical scan of a namelist deck: finds every group instance (&name ... /)
-!> and the keys assigned in it, so that unknown groups and keys are reported
-!> all at once before any namelist read (which stops at the first bad key).
+!> and the keys assigned in it (with their positions), so that unknown groups,
+!> unknown and repeated keys are reported all at once, and a group can be read
+!> with its unknown keys blanked out (a namelist read stops at the first one).
 module io_deck_scan
   use core_status, only: status_t
   implicit none
   private
-  public :: deck_scan, to_lower
+  public :: deck_scan, to_lower, group_text
 
   integer, parameter, public :: LINE_LEN = 512
   integer, parameter, public :: KEY_LEN = 64
 
-  !> One group instance: its name, the deck lines it spans and its keys.
+  !> One group instance: its name, where it is, and its keys.
   type, public :: group_instance_t
     character(len=KEY_LEN) :: name = ''
     integer :: first_line = 0 !< line of '&name'
     integer :: last_line = 0 !< line of the closing '/'
+    integer :: last_col = 0 !< column of the closing '/'
     integer :: nkey = 0
-    character(len=KEY_LEN), allocatable :: key(:) !< keys as written (lower case, no index)
+    character(len=KEY_LEN), allocatable :: key(:) !< key names (lower case, no index)
+    character(len=KEY_LEN), allocatable :: key_full(:) !< with their index, if any
+    integer, allocatable :: key_line(:), key_col(:) !< where each assignment starts
   end type group_instance_t
 
 contains
@@ -47,11 +51,12 @@ contains
     integer, intent(out) :: ngroup
     type(status_t), intent(inout) :: status
     type(group_instance_t), allocatable :: tmp(:)
-    integer :: il, ic, n, start, j, k
+    integer :: il, ic, n, start, j, k, m
     logical :: in_group
     character :: ch, quote
     character(len=LINE_LEN) :: text
     character(len=16) :: lnum
+    character(len=KEY_LEN) :: full
 
     allocate(groups(8))
     ngroup = 0
@@ -69,6 +74,12 @@ contains
           cycle
         end if
         if (ch == '!' .or. (ch == '#' .and. .not. in_group)) exit
+        if (in_group .and. (ch == '&' .or. ch == '$')) then
+          call unclosed(ngroup)
+          groups(ngroup)%last_line = il
+          groups(ngroup)%last_col = ic - 1
+          in_group = .false.
+        end if
         if (.not. in_group) then
           if (ch == '&' .or. ch == '$') then
             start = ic + 1
@@ -84,7 +95,8 @@ contains
             ngroup = ngroup + 1
             groups(ngroup)%name = to_lower(text(start:ic))
             groups(ngroup)%first_line = il
-            allocate(groups(ngroup)%key(16))
+            allocate(groups(ngroup)%key(16), groups(ngroup)%key_full(16))
+            allocate(groups(ngroup)%key_line(16), groups(ngroup)%key_col(16))
             in_group = .true.
           else if (ch /= ' ' .and. ch /= achar(9)) then
             write(lnum, '(i0)') il
@@ -97,6 +109,7 @@ contains
             quote = ch
           else if (ch == '/') then
             groups(ngroup)%last_line = il
+            groups(ngroup)%last_col = ic
             in_group = .false.
           else if (ch == '=') then
             ! The key is the name just before '=', after an optional (index).
@@ -105,6 +118,7 @@ contains
               if (text(j:j) /= ' ') exit
               j = j - 1
             end do
+            m = j
             if (j >= 1) then
               if (text(j:j) == ')') then
                 do while (j >= 1)
@@ -119,30 +133,98 @@ contains
               if (.not. is_name_char(text(k:k))) exit
               k = k - 1
             end do
-            if (j >= k + 1) call add_key(groups(ngroup), to_lower(text(k + 1:j)))
+            if (j >= k + 1) then
+              full = to_lower(text(k + 1:m))
+              call add_key(groups(ngroup), to_lower(text(k + 1:j)), full, il, k + 1, status)
+            end if
           end if
         end if
       end do
     end do
     if (in_group) then
-      write(lnum, '(i0)') groups(ngroup)%first_line
-      call status%add('&'//trim(groups(ngroup)%name)//': group opened on line '//trim(lnum)// &
-          ' is never closed with ''/''')
+      call unclosed(ngroup)
       groups(ngroup)%last_line = size(lines)
+      groups(ngroup)%last_col = len(lines(1))
     end if
+
+  contains
+
+    subroutine unclosed(g)
+      integer, intent(in) :: g
+      write(lnum, '(i0)') groups(g)%first_line
+      call status%add('&'//trim(groups(g)%name)//': group opened on line '//trim(lnum)// &
+          ' is never closed with ''/''')
+    end subroutine unclosed
+
   end subroutine deck_scan
 
-  subroutine add_key(group, key)
+  subroutine add_key(group, key, full, line, col, status)
     type(group_instance_t), intent(inout) :: group
-    character(len=*), intent(in) :: key
-    character(len=KEY_LEN), allocatable :: tmp(:)
+    character(len=*), intent(in) :: key, full
+    integer, intent(in) :: line, col
+    type(status_t), intent(inout) :: status
+    character(len=KEY_LEN), allocatable :: tmp(:), tmp2(:)
+    integer, allocatable :: itmp(:), itmp2(:)
+    integer :: k
+    do k = 1, group%nkey
+      if (group%key_full(k) == full) call status%add('&'//trim(group%name)//': '// &
+          trim(full)//': given twice in one group')
+    end do
     if (group%nkey == size(group%key)) then
-      allocate(tmp(2 * group%nkey))
+      allocate(tmp(2 * group%nkey), tmp2(2 * group%nkey), itmp(2 * group%nkey), &
+          itmp2(2 * group%nkey))
       tmp(1:group%nkey) = group%key(1:group%nkey)
+      tmp2(1:group%nkey) = group%key_full(1:group%nkey)
+      itmp(1:group%nkey) = group%key_line(1:group%nkey)
+      itmp2(1:group%nkey) = group%key_col(1:group%nkey)
       call move_alloc(tmp, group%key)
+      call move_alloc(tmp2, group%key_full)
+      call move_alloc(itmp, group%key_line)
+      call move_alloc(itmp2, group%key_col)
     end if
     group%nkey = group%nkey + 1
     group%key(group%nkey) = key
+    group%key_full(group%nkey) = full
+    group%key_line(group%nkey) = line
+    group%key_col(group%nkey) = col
   end subroutine add_key
+
+  !> The group's lines, ready for a namelist read: assignments to keys not in
+  !> known are blanked out, and the group is closed at its end.
+  function group_text(lines, group, known) result(text)
+    character(len=LINE_LEN), intent(in) :: lines(:)
+    type(group_instance_t), intent(in) :: group
+    character(len=KEY_LEN), intent(in) :: known(:)
+    character(len=LINE_LEN), allocatable :: text(:)
+    integer :: k, line, col, end_line, end_col, first
+    first = group%first_line
+    allocate(text(group%last_line - first + 1))
+    text = lines(first:group%last_line)
+    ! Whatever follows the end of the group on its last line is not part of it.
+    if (group%last_col < LINE_LEN) text(size(text))(group%last_col + 1:) = ''
+    if (text(size(text))(max(1, group%last_col):max(1, group%last_col)) /= '/') &
+        text(size(text)) = trim(text(size(text)))//' /'
+    do k = 1, group%nkey
+      if (any(known == group%key(k))) cycle
+      if (k < group%nkey) then
+        end_line = group%key_line(k + 1)
+        end_col = group%key_col(k + 1) - 1
+      else
+        end_line = group%last_line
+        end_col = group%last_col - 1
+      end if
+      line = group%key_line(k)
+      col = group%key_col(k)
+      do while (line < end_line .or. (line == end_line .and. col <= end_col))
+        if (col > LINE_LEN) then
+          line = line + 1
+          col = 1
+          cycle
+        end if
+        text(line - first + 1)(col:col) = ' '
+        col = col + 1
+      end do
+    end do
+  end function group_text
 
 end module io_deck_scan
