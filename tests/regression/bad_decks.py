@@ -138,6 +138,9 @@ def build_cases():
                   ["&control: tend: unknown key", "valid keys: title, t_end",
                    "&control: t_end: required",
                    "&control: cfl: must be in (0, 1]"], min_errors=3))
+    c.append(Case("repeated_key",
+                  sub("  t_end = 0.05\n", "  t_end = 0.05, t_end = 2.0\n"),
+                  ["&control: t_end: given twice in one group"]))
     c.append(Case("unknown_key_other_group",
                   sub("name = 'gas', eos", "name = 'gas', gama = 1.4, eos"),
                   ["&material: gama: unknown key", "valid keys: name, eos, gamma"]))
