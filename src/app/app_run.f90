@@ -221,6 +221,7 @@ contains
     logical, intent(in) :: restarted
     integer, intent(out) :: code
     real(rk) :: dt, dt_stable, next_dump, work, wall_start, wall_status, work_sum
+    real(rk) :: wall_output, wall_mark
     integer(i8) :: cycle_status
     integer :: bad, bad_half
     logical :: last, dump_now, ok
@@ -229,9 +230,12 @@ contains
     code = EXIT_OK
     wall_start = wall_time()
     wall_status = wall_start
+    wall_output = 0.0_rk
     cycle_status = state%cycle
     if (.not. restarted) then
+      wall_mark = wall_time()
       call write_dump(config, mesh, state, 'initial', wall_start, ok)
+      wall_output = wall_time() - wall_mark
       if (.not. ok) then
         code = EXIT_FAILURE
         return
@@ -317,6 +321,7 @@ contains
         wall_status = wall_time()
         cycle_status = state%cycle
       end if
+      wall_mark = wall_time()
       if (dump_now) then
         next_dump = next_dump + config%output%dump_interval
         if (.not. last) call write_dump(config, mesh, state, 'interval', wall_start, ok)
@@ -333,14 +338,16 @@ contains
           end if
         end if
       end if
+      wall_output = wall_output + (wall_time() - wall_mark)
     end do
     call write_dump(config, mesh, state, 'final', wall_start, ok)
     if (.not. ok) then
       code = EXIT_FAILURE
       return
     end if
-    if (par_rank() == 0) write(output_unit, '(a,i0,a,f10.3,a)') 'impact3d: done, ', &
-        state%cycle, ' cycles, ', wall_time() - wall_start, ' s'
+    if (par_rank() == 0) write(output_unit, '(a,i0,a,f10.3,a,f8.3,a)') 'impact3d: done, ', &
+        state%cycle, ' cycles, ', wall_time() - wall_start, ' s (', wall_output, &
+        ' s of it in dumps)'
   end subroutine time_loop
 
   !> Testing aid (&control fault_nan_cycle): a NaN energy in global zone 1.
