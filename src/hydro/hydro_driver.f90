@@ -7,7 +7,7 @@ module hydro_driver
   use material_table, only: material_t, material_eos
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
-      node_gather_forces, zone_time_step, zone_direction_gradients, zone_limited_viscosity
+      node_gather_forces, zone_time_step, zone_limited_viscosity
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces
   implicit none
   private
@@ -54,8 +54,13 @@ contains
     real(rk), intent(in) :: x(:, :), v(:, :)
     integer, intent(out) :: bad
     integer :: z, m
-    call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
-        state%zone_bmatrix, state%zone_length, state%zone_divergence, bad)
+    if (opt%q_limiter) then
+      call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+          state%zone_bmatrix, state%zone_length, state%zone_divergence, bad, state%zone_gradient)
+    else
+      call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+          state%zone_bmatrix, state%zone_length, state%zone_divergence, bad)
+    end if
     do z = 1, mesh%nzone
       ! A tangled zone keeps its last density; the run stops at the end of the cycle.
       if (state%zone_volume(z) > 0.0_rk) state%zone_density(z) = state%zone_mass(z) / &
@@ -68,8 +73,6 @@ contains
     if (opt%q_limiter) then
       ! The limiter needs face neighbours, which outer ghosts lack: owned zones
       ! compute q, ghosts receive it.
-      call zone_direction_gradients(mesh%nzone, mesh%zone_node, x, v, state%zone_gradient, &
-          state%zone_direction_length)
       call zone_limited_viscosity(mesh%nzone_owned, mesh%face_neighbour, &
           mesh%face_neighbour_face, bc%face_symmetric, state%zone_gradient, opt%q_linear, &
           opt%q_quadratic, state%zone_density, state%zone_sound_speed, state%zone_length, &
@@ -102,8 +105,8 @@ contains
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
           unused, unused, state%corner_force)
     end if
-    call node_gather_forces(mesh%nnode_owned, mesh%corner_start, mesh%corner_list, &
-        state%corner_force, state%node_force)
+    call node_gather_forces(mesh%nnode_owned, 8 * mesh%nzone, mesh%corner_start, &
+        mesh%corner_list, state%corner_force, state%node_force)
     call boundary_pressure_forces(bc, mesh, x, state%node_force)
   end subroutine hydro_forces
 

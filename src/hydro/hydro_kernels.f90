@@ -2,12 +2,13 @@
 !> no MPI, no I/O). The drivers in hydro_cycle call them stage by stage.
 module hydro_kernels
   use core_kinds, only: rk
-  use mesh_geometry, only: hex_volume_gradient, hex_characteristic_length, HOURGLASS_BASE
+  use mesh_geometry, only: hex_volume_gradient, hex_characteristic_length, HOURGLASS_BASE, &
+      SIGN_XI, SIGN_ETA, SIGN_ZETA
   use hydro_state, only: HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   implicit none
   private
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
-  public :: node_gather_forces, zone_time_step, zone_direction_gradients
+  public :: node_gather_forces, zone_time_step
   public :: zone_limited_viscosity
 
   integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
@@ -19,20 +20,25 @@ module hydro_kernels
 contains
 
   !> Volume, B-matrix, characteristic length and velocity divergence of zones
-  !> 1..n. bad returns the first zone with a non-positive or NaN volume (0 = none).
-  subroutine zone_kinematics(n, zone_node, x, v, volume, b, length, divergence, bad)
+  !> 1..n, and (when gradient is present) the stretching rate along each logical
+  !> direction, g_d = dv_d . dx_d / |dx_d|^2 (dx_d, dv_d: differences between
+  !> opposite face centres). bad returns the first zone with a non-positive or
+  !> NaN volume (0 = none).
+  subroutine zone_kinematics(n, zone_node, x, v, volume, b, length, divergence, bad, gradient)
     integer, intent(in) :: n
     integer, intent(in) :: zone_node(:, :)
     real(rk), intent(in) :: x(:, :), v(:, :)
     real(rk), intent(inout) :: volume(:), b(:, :, :), length(:), divergence(:)
     integer, intent(out) :: bad
-    real(rk) :: xz(3, 8), vol, dvdt
-    integer :: z, k, node
+    real(rk), intent(inout), optional :: gradient(:, :) !< (3, nzone)
+    real(rk) :: xz(3, 8), vz(3, 8), vol, dvdt, dx(3, 3), dv(3, 3), l2
+    integer :: z, k, d, node
     bad = 0
     do z = 1, n
       do k = 1, 8
         node = zone_node(k, z)
         xz(:, k) = x(:, node)
+        vz(:, k) = v(:, node)
       end do
       call hex_volume_gradient(xz, vol, b(:, :, z))
       volume(z) = vol
@@ -40,15 +46,34 @@ contains
         if (bad == 0) bad = z
         length(z) = 0.0_rk
         divergence(z) = 0.0_rk
+        if (present(gradient)) gradient(:, z) = 0.0_rk
         cycle
       end if
       length(z) = hex_characteristic_length(xz, vol)
       dvdt = 0.0_rk
       do k = 1, 8
-        node = zone_node(k, z)
-        dvdt = dvdt + b(1, k, z) * v(1, node) + b(2, k, z) * v(2, node) + b(3, k, z) * v(3, node)
+        dvdt = dvdt + b(1, k, z) * vz(1, k) + b(2, k, z) * vz(2, k) + b(3, k, z) * vz(3, k)
       end do
       divergence(z) = dvdt / vol
+      if (.not. present(gradient)) cycle
+      dx = 0.0_rk
+      dv = 0.0_rk
+      do k = 1, 8
+        dx(:, 1) = dx(:, 1) + SIGN_XI(k) * xz(:, k)
+        dx(:, 2) = dx(:, 2) + SIGN_ETA(k) * xz(:, k)
+        dx(:, 3) = dx(:, 3) + SIGN_ZETA(k) * xz(:, k)
+        dv(:, 1) = dv(:, 1) + SIGN_XI(k) * vz(:, k)
+        dv(:, 2) = dv(:, 2) + SIGN_ETA(k) * vz(:, k)
+        dv(:, 3) = dv(:, 3) + SIGN_ZETA(k) * vz(:, k)
+      end do
+      do d = 1, 3
+        l2 = dx(1, d)**2 + dx(2, d)**2 + dx(3, d)**2
+        if (l2 > 0.0_rk) then
+          gradient(d, z) = (dv(1, d) * dx(1, d) + dv(2, d) * dx(2, d) + dv(3, d) * dx(3, d)) / l2
+        else
+          gradient(d, z) = 0.0_rk
+        end if
+      end do
     end do
   end subroutine zone_kinematics
 
@@ -73,7 +98,8 @@ contains
   end subroutine zone_viscosity
 
   !> Corner forces F(:, k, z) = (p + q) dV/dx_k + Flanagan-Belytschko hourglass
-  !> forces. With stiffness hourglass control the generalised hourglass stress
+  !> forces, f_k = -sum_m gamma_km Q_m with Q_m = kappa/4 rho c V^2/3 (gamma_m . v)
+  !> (viscous) or its time integral with rate kappa/4 rho c^2 V^1/3 (stiffness). With stiffness hourglass control the generalised hourglass stress
   !> used is hg + stage_dt/2 * rate, and hg_new = hg + stage_dt * rate.
   subroutine zone_corner_forces(n, zone_node, x, v, volume, b, pressure, q, density, &
       sound_speed, hourglass, coefficient, stage_dt, hg, hg_new, force)
@@ -88,45 +114,55 @@ contains
     real(rk), intent(inout) :: hg_new(:, :, :) !< stiffness state at t^n+1
     real(rk), intent(inout) :: force(:, :, :)
     real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
-    real(rk) :: ptot, scale, rvol
+    real(rk) :: ptot, scale, rvol, f(3)
     integer :: z, k, m, node
+    logical :: with_hourglass
+    with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
     do z = 1, n
       ptot = pressure(z) + q(z)
-      do k = 1, 8
-        force(:, k, z) = ptot * b(:, k, z)
-      end do
       ! A tangled zone (the run stops at the end of the cycle) gets no hourglass force.
-      if ((hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS) .and. &
-          volume(z) > 0.0_rk) then
+      if (.not. with_hourglass .or. .not. (volume(z) > 0.0_rk)) then
         do k = 1, 8
-          node = zone_node(k, z)
-          xz(:, k) = x(:, node)
-          vz(:, k) = v(:, node)
+          force(:, k, z) = ptot * b(:, k, z)
         end do
-        ! gamma_m = h_m - (h_m . x_j) b_j / V  (orthogonal to linear fields)
-        hx = matmul(xz, HOURGLASS_BASE)
-        rvol = 1.0_rk / volume(z)
-        do m = 1, 4
-          do k = 1, 8
-            gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * b(1, k, z) &
-                + hx(2, m) * b(2, k, z) + hx(3, m) * b(3, k, z))
-          end do
-        end do
-        rate = matmul(vz, gam)
-        if (hourglass == HOURGLASS_VISCOUS) then
-          scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)
-          stress = scale * rate
-        else
-          scale = 0.25_rk * coefficient * density(z) * sound_speed(z)**2 * volume(z)**(1.0_rk / 3.0_rk)
-          stress = hg(:, :, z) + 0.5_rk * stage_dt * scale * rate
-          hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale * rate
-        end if
-        do k = 1, 8
-          do m = 1, 4
-            force(:, k, z) = force(:, k, z) - gam(k, m) * stress(:, m)
-          end do
-        end do
+        cycle
       end if
+      do k = 1, 8
+        node = zone_node(k, z)
+        xz(:, k) = x(:, node)
+        vz(:, k) = v(:, node)
+      end do
+      ! gamma_m = h_m - (h_m . x_j) b_j / V  (orthogonal to linear fields)
+      hx = 0.0_rk
+      do k = 1, 8
+        do m = 1, 4
+          hx(:, m) = hx(:, m) + HOURGLASS_BASE(k, m) * xz(:, k)
+        end do
+      end do
+      rvol = 1.0_rk / volume(z)
+      rate = 0.0_rk
+      do m = 1, 4
+        do k = 1, 8
+          gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * b(1, k, z) &
+              + hx(2, m) * b(2, k, z) + hx(3, m) * b(3, k, z))
+          rate(:, m) = rate(:, m) + gam(k, m) * vz(:, k)
+        end do
+      end do
+      if (hourglass == HOURGLASS_VISCOUS) then
+        scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)
+        stress = scale * rate
+      else
+        scale = 0.25_rk * coefficient * density(z) * sound_speed(z)**2 * volume(z)**(1.0_rk / 3.0_rk)
+        stress = hg(:, :, z) + 0.5_rk * stage_dt * scale * rate
+        hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale * rate
+      end if
+      do k = 1, 8
+        f = ptot * b(:, k, z)
+        do m = 1, 4
+          f = f - gam(k, m) * stress(:, m)
+        end do
+        force(:, k, z) = f
+      end do
     end do
   end subroutine zone_corner_forces
 
@@ -151,22 +187,27 @@ contains
   end subroutine zone_work
 
   !> Node force = sum of its corner forces, in the fixed order of the corner lists.
-  subroutine node_gather_forces(n, corner_start, corner_list, corner_force, force)
+  subroutine node_gather_forces(n, ncorner, corner_start, corner_list, corner_force, force)
     integer, intent(in) :: n
+    integer, intent(in) :: ncorner !< 8 nzone
     integer, intent(in) :: corner_start(:), corner_list(:)
-    real(rk), intent(in) :: corner_force(:, :, :)
+    real(rk), intent(in) :: corner_force(3, ncorner) !< the (3, 8, nzone) array, flat
     real(rk), intent(inout) :: force(:, :)
-    integer :: i, j, c, k, z
-    real(rk) :: f(3)
+    integer :: i, j, c
+    real(rk) :: f1, f2, f3
     do i = 1, n
-      f = 0.0_rk
+      f1 = 0.0_rk
+      f2 = 0.0_rk
+      f3 = 0.0_rk
       do j = corner_start(i), corner_start(i + 1) - 1
-        c = corner_list(j) - 1
-        z = c / 8 + 1
-        k = mod(c, 8) + 1
-        f = f + corner_force(:, k, z)
+        c = corner_list(j)
+        f1 = f1 + corner_force(1, c)
+        f2 = f2 + corner_force(2, c)
+        f3 = f3 + corner_force(3, c)
       end do
-      force(:, i) = f
+      force(1, i) = f1
+      force(2, i) = f2
+      force(3, i) = f3
     end do
   end subroutine node_gather_forces
 
@@ -205,39 +246,6 @@ contains
       end if
     end do
   end subroutine zone_time_step
-
-  !> Stretching rate g_d = dv_d . dx_d / |dx_d|^2 of zones 1..n along their
-  !> three logical directions (dx_d, dv_d: differences between opposite face
-  !> centres), and the zone length |dx_d| along each.
-  subroutine zone_direction_gradients(n, zone_node, x, v, gradient, length)
-    integer, intent(in) :: n
-    integer, intent(in) :: zone_node(:, :)
-    real(rk), intent(in) :: x(:, :), v(:, :)
-    real(rk), intent(inout) :: gradient(:, :), length(:, :) !< (3, nzone)
-    integer, parameter :: face_nodes(4, 6) = reshape([1, 4, 3, 2, 5, 6, 7, 8, 1, 2, 6, 5, &
-        2, 3, 7, 6, 3, 4, 8, 7, 4, 1, 5, 8], [4, 6])
-    real(rk) :: xz(3, 8), vz(3, 8), dx(3), dv(3), l2
-    integer :: z, k, d
-    do z = 1, n
-      do k = 1, 8
-        xz(:, k) = x(:, zone_node(k, z))
-        vz(:, k) = v(:, zone_node(k, z))
-      end do
-      do d = 1, 3
-        dx = 0.25_rk * (sum(xz(:, face_nodes(:, FACE_PLUS(d))), dim=2) &
-            - sum(xz(:, face_nodes(:, FACE_MINUS(d))), dim=2))
-        dv = 0.25_rk * (sum(vz(:, face_nodes(:, FACE_PLUS(d))), dim=2) &
-            - sum(vz(:, face_nodes(:, FACE_MINUS(d))), dim=2))
-        l2 = dot_product(dx, dx)
-        length(d, z) = sqrt(l2)
-        if (l2 > 0.0_rk) then
-          gradient(d, z) = dot_product(dv, dx) / l2
-        else
-          gradient(d, z) = 0.0_rk
-        end if
-      end do
-    end do
-  end subroutine zone_direction_gradients
 
   !> Monotonic (Christensen-type) limited viscosity of zones 1..n. Along each
   !> logical direction d in compression (g_d < 0) the limiter is

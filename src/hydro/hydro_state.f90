@@ -43,7 +43,6 @@ module hydro_state
     real(rk), allocatable :: zone_length(:) !< characteristic length
     real(rk), allocatable :: zone_divergence(:) !< div v = (dV/dt)/V
     real(rk), allocatable :: zone_gradient(:, :) !< (3, nzone) stretching rates (limiter)
-    real(rk), allocatable :: zone_direction_length(:, :) !< (3, nzone) lengths (limiter)
     real(rk), allocatable :: zone_bmatrix(:, :, :) !< (3, 8, nzone) dV/dx at x^n
     real(rk), allocatable :: zone_hourglass(:, :, :) !< (3, 4, nzone) stiffness state
     real(rk), allocatable :: zone_hourglass_new(:, :, :) !< its update during a cycle
@@ -73,9 +72,8 @@ contains
     allocate(this%zone_viscosity(nzone), this%zone_sound_speed(nzone), this%zone_length(nzone))
     allocate(this%zone_divergence(nzone), this%zone_bmatrix(3, 8, nzone))
     allocate(this%corner_force(3, 8, nzone))
-    allocate(this%zone_gradient(3, nzone), this%zone_direction_length(3, nzone))
+    allocate(this%zone_gradient(3, nzone))
     this%zone_gradient = 0.0_rk
-    this%zone_direction_length = 0.0_rk
     if (stiffness) then
       allocate(this%zone_hourglass(3, 4, nzone), this%zone_hourglass_new(3, 4, nzone))
       this%zone_hourglass = 0.0_rk

@@ -137,7 +137,10 @@ contains
     real(rk), intent(in) :: x(3, 8)
     integer, intent(in) :: f
     real(rk) :: area
-    area = norm2(quad_vector_area(x(:, HEX_FACE_NODES(:, f))))
+    real(rk) :: d1(3), d2(3)
+    d1 = x(:, HEX_FACE_NODES(3, f)) - x(:, HEX_FACE_NODES(1, f))
+    d2 = x(:, HEX_FACE_NODES(4, f)) - x(:, HEX_FACE_NODES(2, f))
+    area = 0.5_rk * norm2(cross(d1, d2))
   end function hex_face_area
 
   !> Characteristic length: volume over the largest face area.
@@ -145,14 +148,17 @@ contains
     real(rk), intent(in) :: x(3, 8)
     real(rk), intent(in) :: volume !< the hex volume (already known)
     real(rk) :: length
-    real(rk) :: amax
+    real(rk) :: a2max, c(3)
     integer :: f
-    amax = 0.0_rk
+    ! Compare squared doubled areas; one square root at the end.
+    a2max = 0.0_rk
     do f = 1, 6
-      amax = max(amax, hex_face_area(x, f))
+      c = cross(x(:, HEX_FACE_NODES(3, f)) - x(:, HEX_FACE_NODES(1, f)), &
+          x(:, HEX_FACE_NODES(4, f)) - x(:, HEX_FACE_NODES(2, f)))
+      a2max = max(a2max, c(1)**2 + c(2)**2 + c(3)**2)
     end do
-    if (amax > 0.0_rk) then
-      length = volume / amax
+    if (a2max > 0.0_rk) then
+      length = 2.0_rk * volume / sqrt(a2max)
     else
       length = 0.0_rk
     end if
