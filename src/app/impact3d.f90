@@ -4,6 +4,7 @@ program impact3d
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use app_run, only: run_deck, EXIT_OK, EXIT_INPUT
   use parallel_env, only: par_init, par_finalize, par_rank
+  use io_deck, only: deck_known_keys
   implicit none
   character(len=512) :: arg, deck, restart
   integer :: i, nargs, code
@@ -23,8 +24,14 @@ program impact3d
     case ('-h', '--help')
       if (par_rank() == 0) write(output_unit, '(a)') &
           'usage: impact3d [--check] [--restart dump.h5] deck.nml', &
+          '  --keys       list every deck group and key', &
           '  --check      validate the deck and set up the mesh, run nothing', &
           '  --restart F  continue from dump F (same deck and mesh)'
+      check_only = .true.
+      deck = '-'
+      exit
+    case ('--keys')
+      if (par_rank() == 0) call print_keys()
       check_only = .true.
       deck = '-'
       exit
@@ -70,4 +77,22 @@ program impact3d
   case default
     stop 3
   end select
+contains
+
+  !> Every deck group and its keys, one group per line.
+  subroutine print_keys()
+    character(len=8), parameter :: groups(8) = [character(len=8) :: 'control', 'hydro', &
+        'mesh', 'material', 'block', 'region', 'boundary', 'output']
+    character(len=64), allocatable :: keys(:)
+    integer :: g, k
+    do g = 1, size(groups)
+      keys = deck_known_keys(trim(groups(g)))
+      write(output_unit, '(a)', advance='no') '&'//trim(groups(g))//':'
+      do k = 1, size(keys)
+        write(output_unit, '(a)', advance='no') ' '//trim(keys(k))
+      end do
+      write(output_unit, '(a)') ''
+    end do
+  end subroutine print_keys
+
 end program impact3d

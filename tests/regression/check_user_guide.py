@@ -1,0 +1,37 @@
+#!/usr/bin/python3
+"""The user guide documents every deck key the code knows, and no other.
+
+Usage: check_user_guide.py IMPACT3D_EXE docs/user-guide.md
+Runs `impact3d --keys`, then checks that each group has a '### &group' section
+whose table rows (| `key` | ...) name exactly the code's keys.
+"""
+import re
+import subprocess
+import sys
+
+exe, guide = sys.argv[1], sys.argv[2]
+out = subprocess.run([exe, "--keys"], capture_output=True, text=True, check=True).stdout
+code = {}
+for line in out.splitlines():
+    name, _, keys = line.partition(":")
+    code[name.strip().lstrip("&")] = set(keys.split())
+text = open(guide).read()
+sections = re.split(r"^### &", text, flags=re.M)[1:]
+doc = {}
+for sec in sections:
+    name = sec.split()[0]
+    keys = set()
+    for row in re.findall(r"^\| (`[^|]*`) \|", sec, flags=re.M):
+        keys.update(re.findall(r"`([a-z_0-9]+)`", row))
+    doc[name] = keys
+failed = 0
+for group, keys in code.items():
+    missing = keys - doc.get(group, set())
+    extra = doc.get(group, set()) - keys
+    ok = not missing and not extra
+    failed += not ok
+    print(("PASS" if ok else "FAIL") + " &%s: %d keys" % (group, len(keys))
+          + ("" if ok else " undocumented: %s; not in the code: %s"
+             % (sorted(missing), sorted(extra))))
+print("%d passed, %d failed" % (len(code) - failed, failed))
+sys.exit(1 if failed or not code else 0)
