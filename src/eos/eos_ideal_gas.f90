@@ -7,13 +7,14 @@ module eos_ideal_gas
 
 contains
 
-  !> Pressure from density and specific internal energy.
+  !> Pressure from density and specific internal energy. A gas holds no
+  !> tension: a (round-off) negative energy of a cold zone gives p = 0.
   elemental function ideal_gas_pressure(gamma, rho, e) result(p)
     real(rk), intent(in) :: gamma !< ratio of specific heats
     real(rk), intent(in) :: rho !< density
     real(rk), intent(in) :: e !< specific internal energy
     real(rk) :: p
-    p = (gamma - 1.0_rk) * rho * e
+    p = (gamma - 1.0_rk) * rho * max(e, 0.0_rk)
   end function ideal_gas_pressure
 
   !> Adiabatic sound speed; zero for a cell with no mass or negative pressure.

@@ -12,6 +12,7 @@ module hydro_kernels
   public :: zone_limited_viscosity
 
   integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
+  real(rk), parameter :: SYMMETRY_RATIO = 1.0_rk !< a mirror neighbour has the same rate
   !> Faces (mesh_geometry order) on the minus and plus side of each logical direction.
   integer, parameter :: FACE_MINUS(3) = [6, 3, 1], FACE_PLUS(3) = [4, 5, 2]
   !> Logical direction normal to each face.
@@ -252,7 +253,9 @@ contains
   !> phi_d = max(0, min((r- + r+)/2, 2 r-, 2 r+, 1)), r+- the neighbours'
   !> stretching rates over the zone's own; the zone takes phi = min_d phi_d
   !> (smooth only if smooth in every direction) and
-  !> q = rho (1 - phi)^2 C2 (L D)^2 + rho (1 - phi) C1 c L |D| for D = div v < 0.
+  !> q = rho (1 - phi)^2 C2 (L D)^2 + rho C1 c L |D| for D = div v < 0: the
+  !> linear term is not limited (it vanishes in cold smooth inflow anyway, and
+  !> damping in hot regions keeps the Noh axes from jetting into a collapse).
   !> A missing neighbour counts as r = 1 on a symmetry plane, r = 0 elsewhere.
   subroutine zone_limited_viscosity(n, neighbour, neighbour_face, symmetric, gradient, &
       q_linear, q_quadratic, density, sound_speed, length, divergence, q)
@@ -278,8 +281,9 @@ contains
         rp = ratio(FACE_PLUS(d))
         phi = min(phi, max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk)))
       end do
-      du = length(z) * divergence(z) * (1.0_rk - phi)
-      q(z) = density(z) * (q_quadratic * du * du - q_linear * sound_speed(z) * du)
+      du = length(z) * divergence(z)
+      q(z) = density(z) * (q_quadratic * (du * (1.0_rk - phi))**2 &
+          - q_linear * sound_speed(z) * du)
     end do
 
   contains
@@ -291,7 +295,7 @@ contains
       if (nb > 0) then
         ratio = gradient(FACE_DIRECTION(neighbour_face(face, z)), nb) / g
       else if (symmetric(face, z)) then
-        ratio = 1.0_rk
+        ratio = SYMMETRY_RATIO
       else
         ratio = 0.0_rk
       end if

@@ -14,6 +14,16 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   compare  --deck D --np N --problem P --max KEY=VALUE ... --min KEY=VALUE ...
                                       run, compare the final dump with the exact solution
                                       (tools/compare.py) and check the summary values
+  convergence --deck TEMPLATE --sizes 100 200 400 --problem P --key L1_rho
+              --min-rate R [--max-at SIZE=VALUE]
+                                      run the template ({n} = zones, {h} = 1/n) at each
+                                      size; observed rates log2(e(n)/e(2n))/log2(2) >= R
+  window   --deck D --np N --axis x --range A B --target 4 --tol 0.05
+                                      zone densities with centroid in [A, B] all within
+                                      tol (relative) of target
+  interface --deck D --np N --zones-tol 2 [compare args]
+                                      two-block Riemann problem: the material interface
+                                      and the shock within 2 local zone widths of exact
 Prints 'N passed, M failed' and exits 1 on failure.
 """
 import argparse
@@ -146,18 +156,9 @@ def cmd_compare(args):
     check("run exits 0", code == 0, err[-2000:])
     if code != 0:
         return
-    cmd = ["/usr/bin/python3", os.path.join(TOOLS, "compare.py"), "--problem", args.problem,
-           final_dump(wd), "--out", os.path.join(wd, "summary.txt")] + args.compare_args
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    check("compare.py runs", proc.returncode == 0, proc.stderr[-2000:])
-    values = {}
-    for line in proc.stdout.splitlines():
-        if "=" in line:
-            k, v = line.split("=", 1)
-            try:
-                values[k.strip()] = float(v)
-            except ValueError:
-                pass
+    rc, values, err = compare_values(final_dump(wd), args.problem,
+                                     args.compare_args + ["--out", os.path.join(wd, "summary.txt")])
+    check("compare.py runs", rc == 0, err[-2000:])
     for spec in args.max or []:
         k, v = spec.split("=")
         got = values.get(k, float("nan"))
@@ -168,10 +169,113 @@ def cmd_compare(args):
         check("%s = %.4e >= %s" % (k, got, v), got >= float(v))
 
 
+def compare_values(dump_path, problem, extra):
+    cmd = ["/usr/bin/python3", os.path.join(TOOLS, "compare.py"), "--problem", problem,
+           dump_path] + list(extra)
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    values = {}
+    for line in proc.stdout.splitlines():
+        if "=" in line:
+            k, v = line.split("=", 1)
+            try:
+                values[k.strip()] = float(v)
+            except ValueError:
+                pass
+    return proc.returncode, values, proc.stderr
+
+
+def cmd_convergence(args):
+    import math
+    template = open(args.deck).read()
+    errors = []
+    for n in args.sizes:
+        wd = os.path.join(args.workdir, "n%d" % n)
+        deck = os.path.join(args.workdir, "deck_%d.nml" % n)
+        os.makedirs(args.workdir, exist_ok=True)
+        with open(deck, "w") as f:
+            f.write(template.replace("{n}", str(n)).replace("{h}", repr(1.0 / n)))
+        code, out, err = run(args, args.np, wd, deck)
+        check("run at %d exits 0" % n, code == 0, err[-2000:])
+        if code != 0:
+            return
+        rc, values, err = compare_values(final_dump(wd), args.problem, args.compare_args)
+        e = values.get(args.key, float("nan"))
+        errors.append(e)
+        print("  n = %d: %s = %.5e" % (n, args.key, e))
+        for spec in args.max_at or []:
+            size, bound = spec.split("=")
+            if int(size) == n:
+                check("%s at %d = %.4e <= %s" % (args.key, n, e, bound), e <= float(bound))
+    for i in range(len(errors) - 1):
+        ratio = args.sizes[i + 1] / args.sizes[i]
+        rate = math.log(errors[i] / errors[i + 1]) / math.log(ratio)
+        check("observed rate %d -> %d = %.3f >= %.2f" % (args.sizes[i], args.sizes[i + 1], rate,
+                                                        args.min_rate), rate >= args.min_rate)
+
+
+def cmd_window(args):
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "window")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0 (no tangling)", code == 0, err[-2000:])
+    if code != 0:
+        return
+    d = dump.load(final_dump(wd))
+    axis = "xyz".index(args.axis)
+    c = dump.zone_centroids(d)[:, axis]
+    sel = (c > args.range[0]) & (c < args.range[1])
+    rho = d["density"][sel]
+    dev = np.abs(rho / args.target - 1.0).max()
+    check("%d zones in the window" % sel.sum(), sel.sum() > 0)
+    check("density in [%.4g, %.4g], mean %.4f: largest deviation %.2f%% <= %.1f%%"
+          % (rho.min(), rho.max(), rho.mean(), 100 * dev, 100 * args.tol), dev <= args.tol)
+
+
+def cmd_interface(args):
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "interface")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    path = final_dump(wd)
+    rc, values, err = compare_values(path, args.problem, args.compare_args)
+    check("compare.py runs", rc == 0, err[-2000:])
+    d = dump.load(path)
+    x = d["coordinates"][:, 0]
+    conn = d["connectivity"]
+    block = d["block"]
+    left = set(conn[block == 1].ravel())
+    right = set(conn[block == 2].ravel())
+    shared = np.array(sorted(left & right))
+    x_interface = x[shared].mean()
+    # local zone widths: the zones touching the interface, and those at the shock
+    width = np.array([x[row].max() - x[row].min() for row in conn])
+    centre = dump.zone_centroids(d)[:, 0]
+    near = np.argsort(np.abs(centre - x_interface))[:2]
+    dx_contact = width[near].mean()
+    err_contact = abs(x_interface - values["contact_x_exact"])
+    check("interface at %.5f, exact %.5f: error %.2f local zones <= %g"
+          % (x_interface, values["contact_x_exact"], err_contact / dx_contact, args.zones_tol),
+          err_contact <= args.zones_tol * dx_contact)
+    behind = np.argsort(np.abs(centre - (values["shock_x_exact"] - 0.02)))[:2]
+    dx_shock = width[behind].mean()
+    check("shock at %.5f, exact %.5f: error %.2f local zones <= %g"
+          % (values["shock_x"], values["shock_x_exact"], values["shock_x_error"] / dx_shock,
+             args.zones_tol), values["shock_x_error"] <= args.zones_tol * dx_shock)
+    for spec in args.max or []:
+        k, v = spec.split("=")
+        got = values.get(k, float("nan"))
+        check("%s = %.4e <= %s" % (k, got, v), got <= float(v))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare"])
+    p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
+                                        "convergence", "window", "interface"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -185,9 +289,19 @@ def main():
     p.add_argument("--problem")
     p.add_argument("--max", action="append")
     p.add_argument("--min", action="append")
-    p.add_argument("compare_args", nargs="*", help="extra arguments for compare.py (after --)")
+    p.add_argument("--sizes", type=int, nargs="+", default=[100, 200, 400])
+    p.add_argument("--key", default="L1_rho")
+    p.add_argument("--min-rate", type=float, default=0.8)
+    p.add_argument("--max-at", action="append")
+    p.add_argument("--axis", default="x")
+    p.add_argument("--range", type=float, nargs=2)
+    p.add_argument("--target", type=float)
+    p.add_argument("--zones-tol", type=float, default=2.0)
+    p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
     args = p.parse_args()
     args.deck = os.path.abspath(args.deck)
+    args.workdir = os.path.abspath(args.workdir)
+    args.compare_args = args.compare_args.split()
     args.exe = os.path.abspath(args.exe)
     globals()["cmd_" + args.command](args)
     npass = sum(results)
