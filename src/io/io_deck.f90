@@ -80,7 +80,7 @@ contains
           'hourglass_coefficient']
     case ('mesh')
       keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
-          'ratio_y', 'ratio_z', 'skew_amplitude']
+          'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb']
     case ('material')
       keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma']
     case ('block')
@@ -385,10 +385,10 @@ contains
     real(rk) :: x(MAX_INTERVALS + 1), y(MAX_INTERVALS + 1), z(MAX_INTERVALS + 1)
     real(rk) :: ratio_x(MAX_INTERVALS), ratio_y(MAX_INTERVALS), ratio_z(MAX_INTERVALS)
     integer :: nx(MAX_INTERVALS), ny(MAX_INTERVALS), nz(MAX_INTERVALS)
-    real(rk) :: skew_amplitude
+    real(rk) :: skew_amplitude, perturb
     integer :: ios
     character(len=256) :: msg
-    namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude
+    namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude, perturb
 
     type = 'box'
     x = UNSET
@@ -401,6 +401,7 @@ contains
     ratio_y = 1.0_rk
     ratio_z = 1.0_rk
     skew_amplitude = 0.0_rk
+    perturb = 0.0_rk
     read(sect, nml=mesh, iostat=ios, iomsg=msg)
     call nml_error('mesh', ios, msg, status)
     if (ios /= 0) return
@@ -413,6 +414,9 @@ contains
     call direction('y', y, ny, ratio_y, 2)
     call direction('z', z, nz, ratio_z, 3)
     config%box%skew_amplitude = skew_amplitude
+    if (perturb < 0.0_rk .or. perturb >= 0.5_rk) call status%add('&mesh: perturb: must be '// &
+        'in [0, 0.5) (fraction of the local zone size)')
+    config%box%perturb = perturb
 
   contains
 

@@ -1,7 +1,7 @@
 !> The whole mesh as generated or read, before partitioning: every rank builds
 !> the same one (deterministic), then keeps its part (mesh_local).
 module mesh_global
-  use core_kinds, only: rk, ik
+  use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
   implicit none
   private
@@ -34,6 +34,7 @@ module mesh_global
     integer :: zones(MAX_INTERVALS, 3) = 0 !< zones in each interval
     real(rk) :: ratio(MAX_INTERVALS, 3) = 1.0_rk !< last/first zone size in each interval
     real(rk) :: skew_amplitude = 0.0_rk !< Saltzman sine skew of x (0 = none)
+    real(rk) :: perturb = 0.0_rk !< random interior-node displacement, fraction of zone size
   end type box_spec_t
 
 contains
@@ -136,6 +137,14 @@ contains
             mesh%coordinates(1, n) = px(i) + spec%skew_amplitude * (ymax - py(j)) / &
                 (ymax - ymin) * sin(pi * (px(i) - xmin) / (xmax - xmin))
           end if
+          ! Interior nodes only, so the faces stay planar; deterministic in the node id.
+          if (spec%perturb > 0.0_rk .and. i > 0 .and. i < nx .and. j > 0 .and. j < ny &
+              .and. k > 0 .and. k < nz) then
+            mesh%coordinates(:, n) = mesh%coordinates(:, n) + spec%perturb * &
+                [min(px(i) - px(i - 1), px(i + 1) - px(i)) * unit_hash(n, 1), &
+                min(py(j) - py(j - 1), py(j + 1) - py(j)) * unit_hash(n, 2), &
+                min(pz(k) - pz(k - 1), pz(k + 1) - pz(k)) * unit_hash(n, 3)]
+          end if
         end do
       end do
     end do
@@ -173,6 +182,16 @@ contains
     end do
 
   contains
+
+    !> A number in [-0.5, 0.5) from a node id and a component (integer hash).
+    pure real(rk) function unit_hash(id, comp)
+      integer, intent(in) :: id, comp
+      integer(i8) :: h
+      h = int(id, i8) * 2654435761_i8 + int(comp, i8) * 40503_i8
+      h = modulo(ieor(h, ishft(h, -13)), 2147483648_i8)
+      h = modulo(h * 1103515245_i8 + 12345_i8, 2147483648_i8)
+      unit_hash = real(h, rk) / 2147483648.0_rk - 0.5_rk
+    end function unit_hash
 
     pure integer function node_id(ii, jj, kk)
       integer, intent(in) :: ii, jj, kk

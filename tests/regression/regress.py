@@ -8,7 +8,7 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
                                       a run restarted from its cycle-C dump on B ranks
                                       ends bitwise identical to the uninterrupted run
   energy   --deck D --np N --tol T    max |relative total-energy error| in history.txt <= T
-  failure  --deck D --np N --expect volume|nan|dt
+  failure  --deck D --np N --expect volume|nan|dt|any
                                       exit code 2, the message names zone/node, position,
                                       cycle and time, and a final *_failed.h5 dump exists
   compare  --deck D --np N --problem P --max KEY=VALUE ... --min KEY=VALUE ...
@@ -21,6 +21,9 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   window   --deck D --np N --axis x --range A B --target 4 --tol 0.05
                                       zone densities with centroid in [A, B] all within
                                       tol (relative) of target
+  stability --deck D --np N       runs to the end (exit 0) or stops through the failure
+                                      path (exit 2 with its message and final dump); no
+                                      dump holds a NaN or infinity
   interface --deck D --np N --zones-tol 2 [compare args]
                                       two-block Riemann problem: the material interface
                                       and the shock within 2 local zone widths of exact
@@ -134,7 +137,9 @@ def cmd_failure(args):
     check("exit code is 2", code == 2, "got %d; stderr: %s" % (code, err[-2000:]))
     what = {"volume": r"zero or negative volume in zone",
             "nan": r"NaN (?:energy in zone|velocity at node)",
-            "dt": r"time step below dt_min, set by zone"}[args.expect]
+            "dt": r"time step below dt_min, set by zone",
+            "any": r"(?:zero or negative volume in zone|NaN (?:energy in zone|velocity at node)"
+                   r"|time step below dt_min, set by zone)"}[args.expect]
     pattern = what + r" (\d+) at \(\s*(\S+)\s+(\S+)\s+(\S+)\) in cycle (\d+), time\s+(\S+)"
     m = re.search(pattern, err)
     check("message names the zone, its position, the cycle and the time", m is not None,
@@ -271,11 +276,32 @@ def cmd_interface(args):
         check("%s = %.4e <= %s" % (k, got, v), got <= float(v))
 
 
+def cmd_stability(args):
+    import numpy as np
+    import h5py
+    wd = os.path.join(args.workdir, "stability")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("exit code 0 (done) or 2 (clean failure), got %d" % code, code in (0, 2), err[-2000:])
+    if code == 2:
+        check("failure message and final dump", "writing a final dump" in err
+              and len(glob.glob(os.path.join(wd, "*_failed.h5"))) == 1, err[-2000:])
+    dumps = sorted(glob.glob(os.path.join(wd, "*.h5")))
+    bad = []
+    for path in dumps:
+        with h5py.File(path, "r") as f:
+            def visit(name, obj):
+                if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f":
+                    if not np.all(np.isfinite(obj[()])):
+                        bad.append(os.path.basename(path) + ":" + name)
+            f.visititems(visit)
+    check("%d dumps, every value finite" % len(dumps), len(dumps) >= 2 and not bad, str(bad))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
-                                        "convergence", "window", "interface"])
+                                        "convergence", "window", "interface", "stability"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -285,7 +311,7 @@ def main():
     p.add_argument("--restart-np", type=int, default=1)
     p.add_argument("--from-cycle", type=int, default=0)
     p.add_argument("--tol", type=float, default=1e-12)
-    p.add_argument("--expect", choices=["volume", "nan", "dt"], default="volume")
+    p.add_argument("--expect", choices=["volume", "nan", "dt", "any"], default="volume")
     p.add_argument("--problem")
     p.add_argument("--max", action="append")
     p.add_argument("--min", action="append")
