@@ -10,7 +10,7 @@ module core_status
   !> Accumulated problems; `count == 0` means success.
   type, public :: status_t
     integer :: count = 0 !< number of problems found
-    character(len=400) :: messages(MAX_MESSAGES) = '' !< their texts (first MAX_MESSAGES)
+    character(len=400), allocatable :: messages(:) !< their texts (first MAX_MESSAGES)
   contains
     procedure :: add => status_add
     procedure :: ok => status_ok
@@ -23,6 +23,7 @@ contains
   subroutine status_add(this, text)
     class(status_t), intent(inout) :: this
     character(len=*), intent(in) :: text !< what is wrong, where, what would be valid
+    if (.not. allocated(this%messages)) allocate(this%messages(MAX_MESSAGES))
     this%count = this%count + 1
     if (this%count <= MAX_MESSAGES) this%messages(this%count) = text
   end subroutine status_add
@@ -37,7 +38,7 @@ contains
   subroutine status_clear(this)
     class(status_t), intent(inout) :: this
     this%count = 0
-    this%messages = ''
+    if (allocated(this%messages)) deallocate(this%messages)
   end subroutine status_clear
 
 end module core_status

@@ -7,7 +7,7 @@ module io_deck
   use core_status, only: status_t
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
-  use material_table, only: material_t, EOS_IDEAL_GAS
+  use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library
   use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE
   use hydro_initial, only: region_t, UNSET
@@ -82,7 +82,8 @@ contains
       keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
           'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb']
     case ('material')
-      keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma']
+      keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma', 'library', 'rho0', 'c0', 's1', &
+          'gamma0', 'b', 'p_min']
     case ('block')
       keys = [character(len=KEY_LEN) :: 'name', 'material', 'box']
     case ('region')
@@ -464,18 +465,26 @@ contains
     type(material_t), intent(inout) :: mat
     type(status_t), intent(inout) :: status
     logical, intent(inout) :: read_ok !< set false when the group cannot be read
-    character(len=NAME_LEN) :: name
+    character(len=NAME_LEN) :: name, library
     character(len=32) :: eos
-    real(rk) :: gamma
+    real(rk) :: gamma, rho0, c0, s1, gamma0, b, p_min
     integer :: ios
+    logical :: found
     character(len=256) :: msg
     character(len=16) :: where
-    namelist /material/ name, eos, gamma
+    namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min
 
     write(where, '(a,i0,a)') '&material(', index, ')'
     name = ''
     eos = ''
+    library = ''
     gamma = UNSET
+    rho0 = UNSET
+    c0 = UNSET
+    s1 = UNSET
+    gamma0 = UNSET
+    b = UNSET
+    p_min = UNSET
     read(sect, nml=material, iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(trim(where)//': cannot read the group: '//trim(msg))
@@ -493,11 +502,40 @@ contains
         call status%add(trim(where)//': gamma: must be > 1')
       end if
       mat%gamma = gamma
+      if (any([rho0, c0, s1, gamma0, b, p_min] /= UNSET) .or. len_trim(library) > 0) &
+          call status%add(trim(where)//': eos: ''ideal_gas'' takes only gamma '// &
+          '(library, rho0, c0, s1, gamma0, b, p_min are Mie-Gruneisen data)')
+    case ('mie_gruneisen')
+      mat%eos = EOS_MIE_GRUNEISEN
+      if (len_trim(library) > 0) then
+        call material_library(to_lower(library), mat%mg, found)
+        if (.not. found) call status%add(trim(where)//': library: '''//trim(library)// &
+            ''' is not a built-in material (valid: al6061, cu_ofhc, ss304, be_verney)')
+      end if
+      if (rho0 /= UNSET) mat%mg%rho0 = rho0
+      if (c0 /= UNSET) mat%mg%c0 = c0
+      if (s1 /= UNSET) mat%mg%s1 = s1
+      if (gamma0 /= UNSET) mat%mg%gamma0 = gamma0
+      if (b /= UNSET) mat%mg%b = b
+      if (p_min /= UNSET) mat%mg%p_min = p_min
+      if (.not. (mat%mg%rho0 > 0.0_rk)) call status%add(trim(where)//': rho0: required '// &
+          '(> 0) for eos = ''mie_gruneisen'' (or give library)')
+      if (.not. (mat%mg%c0 > 0.0_rk)) call status%add(trim(where)//': c0: required '// &
+          '(> 0) for eos = ''mie_gruneisen'' (or give library)')
+      if (.not. (mat%mg%s1 >= 1.0_rk)) call status%add(trim(where)//': s1: required, '// &
+          '>= 1, for eos = ''mie_gruneisen'' (or give library)')
+      if (.not. (mat%mg%gamma0 > 0.0_rk)) call status%add(trim(where)//': gamma0: '// &
+          'required (> 0) for eos = ''mie_gruneisen'' (or give library)')
+      if (mat%mg%b < 0.0_rk .or. mat%mg%b >= mat%mg%gamma0) call status%add(trim(where)// &
+          ': b: must be in [0, gamma0)')
+      if (p_min /= UNSET .and. p_min > 0.0_rk) call status%add(trim(where)// &
+          ': p_min: must be <= 0 (a tension cut-off)')
+      if (gamma /= UNSET) call status%add(trim(where)//': gamma: only for eos = ''ideal_gas''')
     case ('')
-      call status%add(trim(where)//': eos: required (valid: ideal_gas)')
+      call status%add(trim(where)//': eos: required (valid: ideal_gas, mie_gruneisen)')
     case default
       call status%add(trim(where)//': eos: '''//trim(eos)//''' is not an equation of '// &
-          'state (valid: ideal_gas)')
+          'state (valid: ideal_gas, mie_gruneisen)')
     end select
   end subroutine read_material
 

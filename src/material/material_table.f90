@@ -3,11 +3,13 @@
 module material_table
   use core_kinds, only: rk
   use eos_ideal_gas, only: ideal_gas_pressure, ideal_gas_sound_speed, ideal_gas_energy
+  use eos_mie_gruneisen, only: mie_gruneisen_t, mg_pressure, mg_sound_speed, &
+      mg_energy_from_pressure
   implicit none
   private
-  public :: material_eos, material_energy_from_pressure
+  public :: material_eos, material_energy_from_pressure, material_library
 
-  integer, parameter, public :: EOS_IDEAL_GAS = 1
+  integer, parameter, public :: EOS_IDEAL_GAS = 1, EOS_MIE_GRUNEISEN = 2
   integer, parameter, public :: MATERIAL_NAME_LEN = 32
 
   !> One material.
@@ -15,6 +17,8 @@ module material_table
     character(len=MATERIAL_NAME_LEN) :: name = '' !< deck name
     integer :: eos = EOS_IDEAL_GAS !< EOS_* code
     real(rk) :: gamma = 1.4_rk !< ideal gas: ratio of specific heats
+    type(mie_gruneisen_t) :: mg = mie_gruneisen_t(rho0=0.0_rk, c0=0.0_rk, s1=0.0_rk, &
+        gamma0=0.0_rk) !< Mie-Gruneisen data
   end type material_t
 
 contains
@@ -33,6 +37,12 @@ contains
         pressure(z) = ideal_gas_pressure(mat%gamma, density(z), energy(z))
         sound_speed(z) = ideal_gas_sound_speed(mat%gamma, density(z), pressure(z))
       end do
+    case (EOS_MIE_GRUNEISEN)
+      do i = 1, size(list)
+        z = list(i)
+        pressure(z) = mg_pressure(mat%mg, density(z), energy(z))
+        sound_speed(z) = mg_sound_speed(mat%mg, density(z), energy(z), pressure(z))
+      end do
     end select
   end subroutine material_eos
 
@@ -44,9 +54,35 @@ contains
     select case (mat%eos)
     case (EOS_IDEAL_GAS)
       e = ideal_gas_energy(mat%gamma, rho, p)
+    case (EOS_MIE_GRUNEISEN)
+      e = mg_energy_from_pressure(mat%mg, rho, p)
     case default
       e = 0.0_rk
     end select
   end function material_energy_from_pressure
+
+  !> Built-in Mie-Gruneisen data (cm, g, us, Mbar) from Steinberg, UCRL-MA-106439,
+  !> as tabulated in the project's PROBLEMS.md: 'al6061' (Al 6061-T6), 'cu_ofhc'
+  !> (OFHC copper), 'ss304' (304 stainless steel: recalled values, still to be
+  !> checked against a primary source), 'be_verney' (beryllium of the Verney
+  !> problem). found is false for any other name.
+  subroutine material_library(name, mg, found)
+    character(len=*), intent(in) :: name
+    type(mie_gruneisen_t), intent(inout) :: mg
+    logical, intent(out) :: found
+    found = .true.
+    select case (name)
+    case ('al6061')
+      mg = mie_gruneisen_t(rho0=2.703_rk, c0=0.524_rk, s1=1.40_rk, gamma0=1.97_rk, b=0.48_rk)
+    case ('cu_ofhc')
+      mg = mie_gruneisen_t(rho0=8.93_rk, c0=0.394_rk, s1=1.489_rk, gamma0=2.02_rk, b=0.47_rk)
+    case ('ss304')
+      mg = mie_gruneisen_t(rho0=7.90_rk, c0=0.457_rk, s1=1.49_rk, gamma0=1.93_rk, b=0.5_rk)
+    case ('be_verney')
+      mg = mie_gruneisen_t(rho0=1.845_rk, c0=0.800_rk, s1=1.124_rk, gamma0=1.11_rk, b=0.16_rk)
+    case default
+      found = .false.
+    end select
+  end subroutine material_library
 
 end module material_table
