@@ -14,7 +14,8 @@ module app_run
   use hydro_boundary, only: boundary_t
   use hydro_kernels, only: DT_CFL, DT_VOLUME
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
-      hydro_energy_update, hydro_velocity_update, hydro_time_step, hydro_energies
+      hydro_energy_update, hydro_velocity_update, hydro_time_step, hydro_energies, &
+      hydro_strength_update
   use io_deck, only: config_t, deck_read
   use io_h5, only: h5_library_open, h5_library_close
   use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
@@ -393,14 +394,22 @@ contains
     real(rk), intent(out) :: work
     real(rk) :: unused
     integer :: n
+    logical :: strength
 
     state%node_position_old = state%node_position
     state%node_velocity_old = state%node_velocity
     state%zone_energy_old = state%zone_energy
 
+    strength = allocated(state%zone_stress)
+
     ! Predictor: forces at t^n, half-step velocities, geometry and EOS at t^n+1/2.
-    call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
-        state%node_velocity, 0.0_rk)
+    if (strength) then
+      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
+          state%node_velocity, 0.0_rk, state%zone_stress)
+    else
+      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
+          state%node_velocity, 0.0_rk)
+    end if
     call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
     call mesh%node_halo%exchange(state%node_velocity_half)
     do n = 1, mesh%nnode
@@ -410,10 +419,17 @@ contains
     call hydro_energy_update(mesh, state, state%node_velocity_half, 0.5_rk * dt)
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity_half, bad_half)
+    if (strength) call hydro_strength_update(mesh, state, config%materials, mz, &
+        state%node_velocity_half, 0.5_rk * dt, state%zone_stress, state%zone_stress_half, .false.)
 
     ! Corrector: forces at t^n+1/2, final velocities, positions and energies.
-    call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
-        state%node_velocity_half, dt)
+    if (strength) then
+      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
+          state%node_velocity_half, dt, state%zone_stress_half)
+    else
+      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
+          state%node_velocity_half, dt)
+    end if
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
     call mesh%node_halo%exchange(state%node_velocity)
     do n = 1, mesh%nnode
@@ -423,6 +439,12 @@ contains
           state%node_velocity_half(:, n)
     end do
     call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
+    ! Deviatoric stress over the whole step: mid-step geometry, mean velocity.
+    if (strength) then
+      state%zone_stress_half = state%zone_stress
+      call hydro_strength_update(mesh, state, config%materials, mz, &
+          state%node_velocity_half, dt, state%zone_stress_half, state%zone_stress, .true.)
+    end if
     if (config%hydro%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = &
         state%zone_hourglass_new
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &

@@ -10,6 +10,7 @@ module app_setup
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
   use io_deck, only: config_t
+  use material_table, only: STRENGTH_NONE
   use parallel_env, only: par_size
   use parallel_partition, only: partition_zones
   implicit none
@@ -76,7 +77,8 @@ contains
     integer, allocatable :: zone_material(:)
     integer :: n, z, j
     real(rk) :: m
-    call state_init(state, mesh%nnode, mesh%nzone, config%hydro%hourglass == HOURGLASS_STIFFNESS)
+    call state_init(state, mesh%nnode, mesh%nzone, config%hydro%hourglass == HOURGLASS_STIFFNESS, &
+        any(config%materials%strength /= STRENGTH_NONE))
     do n = 1, mesh%nnode
       state%node_position(:, n) = global%coordinates(:, mesh%node_gid(n))
     end do

@@ -10,9 +10,10 @@ module hydro_boundary
   use mesh_local, only: mesh_t
   implicit none
   private
-  public :: boundary_setup, boundary_constrain, boundary_pressure_forces
+  public :: boundary_setup, boundary_constrain, boundary_pressure_forces, boundary_wall
 
   integer, parameter, public :: BC_FREE = 0, BC_SYMMETRY = 1, BC_VELOCITY = 2, BC_PRESSURE = 3
+  integer, parameter, public :: BC_WALL = 4
 
   !> One boundary condition as given in the deck.
   type, public :: boundary_spec_t
@@ -37,6 +38,13 @@ module hydro_boundary
     integer, allocatable :: pnode_start(:), pnode_list(:) !< CSR of 4 (face-1) + corner
     real(rk), allocatable :: pnode_force(:, :) !< (3, npnode) external force of the stage
     logical, allocatable :: face_symmetric(:, :) !< (6, nzone) face lies on a symmetry plane
+    integer :: nwall = 0 !< owned nodes of rigid-wall sets
+    integer, allocatable :: wall_node(:) !< their local indices
+    real(rk), allocatable :: wall_normal(:, :) !< (3, nwall) unit normal pointing into the wall
+    real(rk), allocatable :: wall_offset(:) !< the wall plane: normal . x = offset
+    real(rk), allocatable :: wall_tolerance(:) !< distance within which a node is on the wall
+    integer :: nkinematic = 0 !< owned nodes with a constraint or a wall (boundary work)
+    integer, allocatable :: kinematic_node(:)
   end type boundary_t
 
 contains
@@ -67,7 +75,7 @@ contains
             ''' is not a face set of the mesh (valid: '//set_list(global)//')')
         cycle
       end if
-      if (specs(ib)%kind /= BC_SYMMETRY) cycle
+      if (specs(ib)%kind /= BC_SYMMETRY .and. specs(ib)%kind /= BC_WALL) cycle
       total = 0.0_rk
       do f = global%set_start(s), global%set_start(s + 1) - 1
         z = global%set_zone(f)
@@ -87,8 +95,8 @@ contains
         area = quad_vector_area(p)
         if (dot_product(area, normal(:, ib)) < (1.0_rk - 1.0e-10_rk) * norm2(area)) then
           write(text, '(i0)') ib
-          call status%add('&boundary('//trim(text)//'): type: ''symmetry'' needs a plane, '// &
-              'but set '''//trim(specs(ib)%set)//''' is not planar')
+          call status%add('&boundary('//trim(text)//'): type: '''//trim(kind_name(specs(ib)%kind)) &
+              //''' needs a plane, but set '''//trim(specs(ib)%set)//''' is not planar')
           exit
         end if
       end do
@@ -151,6 +159,9 @@ contains
       end do
     end do
 
+    ! Rigid walls: the plane of the set at t = 0; its owned nodes.
+    call setup_walls()
+
     ! Applied pressure: local faces, and the owned nodes they load.
     bc%nface = 0
     do ib = 1, size(specs)
@@ -205,6 +216,58 @@ contains
 
   contains
 
+    subroutine setup_walls()
+      integer :: iw, sg, ff, kk, nn, count_wall
+      real(rk) :: offset, extent(3, 2), pts(3, 4)
+      logical, allocatable :: is_wall(:), is_kin(:)
+      real(rk), allocatable :: nrm(:, :), off(:), tol(:)
+      allocate(is_wall(nowned), nrm(3, nowned), off(nowned), tol(nowned), is_kin(nowned))
+      is_wall = .false.
+      do iw = 1, size(specs)
+        if (specs(iw)%kind /= BC_WALL) cycle
+        sg = global%find_set(specs(iw)%set)
+        offset = 0.0_rk
+        extent(:, 1) = huge(1.0_rk)
+        extent(:, 2) = -huge(1.0_rk)
+        do ff = global%set_start(sg), global%set_start(sg + 1) - 1
+          pts = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, &
+              global%set_face(ff)), global%set_zone(ff)))
+          offset = max(offset, maxval(matmul(normal(:, iw), pts)))
+          if (ff == global%set_start(sg)) offset = maxval(matmul(normal(:, iw), pts))
+          extent(:, 1) = min(extent(:, 1), minval(pts, dim=2))
+          extent(:, 2) = max(extent(:, 2), maxval(pts, dim=2))
+        end do
+        sg = set_index(mesh, specs(iw)%set)
+        do ff = mesh%set_start(sg), mesh%set_start(sg + 1) - 1
+          do kk = 1, 4
+            nn = mesh%zone_node(HEX_FACE_NODES(kk, mesh%set_face(ff)), mesh%set_zone(ff))
+            if (nn > nowned) cycle
+            is_wall(nn) = .true.
+            nrm(:, nn) = normal(:, iw)
+            off(nn) = offset
+            tol(nn) = 1.0e-9_rk * norm2(extent(:, 2) - extent(:, 1))
+          end do
+        end do
+      end do
+      count_wall = count(is_wall)
+      bc%nwall = count_wall
+      allocate(bc%wall_node(count_wall), bc%wall_normal(3, count_wall))
+      allocate(bc%wall_offset(count_wall), bc%wall_tolerance(count_wall))
+      kk = 0
+      do nn = 1, nowned
+        if (.not. is_wall(nn)) cycle
+        kk = kk + 1
+        bc%wall_node(kk) = nn
+        bc%wall_normal(:, kk) = nrm(:, nn)
+        bc%wall_offset(kk) = off(nn)
+        bc%wall_tolerance(kk) = tol(nn)
+      end do
+      is_kin = is_wall
+      is_kin(bc%node(1:bc%nconstrained)) = .true.
+      bc%nkinematic = count(is_kin)
+      bc%kinematic_node = pack([(nn, nn = 1, nowned)], is_kin)
+    end subroutine setup_walls
+
     subroutine add_direction(node, dvec, value)
       integer, intent(in) :: node
       real(rk), intent(in) :: dvec(3), value
@@ -223,6 +286,37 @@ contains
     end subroutine add_direction
 
   end subroutine boundary_setup
+
+  function kind_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(len=16) :: name
+    select case (kind)
+    case (BC_SYMMETRY)
+      name = 'symmetry'
+    case (BC_WALL)
+      name = 'wall'
+    case default
+      name = 'other'
+    end select
+  end function kind_name
+
+  !> Rigid unilateral walls: a node on the wall (at t^n, x the start-of-step
+  !> positions) whose new velocity points into the wall loses that normal
+  !> component; a node pulled away (tension) is free to leave.
+  subroutine boundary_wall(bc, x, v)
+    type(boundary_t), intent(in) :: bc
+    real(rk), intent(in) :: x(:, :)
+    real(rk), intent(inout) :: v(:, :)
+    integer :: k, n
+    real(rk) :: vn
+    do k = 1, bc%nwall
+      n = bc%wall_node(k)
+      if (dot_product(bc%wall_normal(:, k), x(:, n)) < bc%wall_offset(k) - &
+          bc%wall_tolerance(k)) cycle
+      vn = dot_product(bc%wall_normal(:, k), v(:, n))
+      if (vn > 0.0_rk) v(:, n) = v(:, n) - vn * bc%wall_normal(:, k)
+    end do
+  end subroutine boundary_wall
 
   function set_list(global) result(text)
     type(global_mesh_t), intent(in) :: global

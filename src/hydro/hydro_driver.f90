@@ -4,15 +4,16 @@
 module hydro_driver
   use core_kinds, only: rk
   use mesh_local, only: mesh_t
-  use material_table, only: material_t, material_eos
+  use material_table, only: material_t, material_eos, STRENGTH_NONE
+  use material_strength, only: deviatoric_update, velocity_gradient
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
       node_gather_forces, zone_time_step, zone_limited_viscosity
-  use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces
+  use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces, boundary_wall
   implicit none
   private
   public :: hydro_zone_update, hydro_forces, hydro_energy_update, hydro_velocity_update
-  public :: hydro_time_step, hydro_energies, material_zones_build
+  public :: hydro_time_step, hydro_energies, material_zones_build, hydro_strength_update
 
   !> Zones of each material (local indices), for the EOS loops.
   type, public :: material_zones_t
@@ -75,7 +76,8 @@ contains
       ! compute q, ghosts receive it.
       call zone_limited_viscosity(mesh%nzone_owned, mesh%face_neighbour, &
           mesh%face_neighbour_face, bc%face_symmetric, state%zone_gradient, opt%q_linear, &
-          opt%q_quadratic, state%zone_density, state%zone_sound_speed, state%zone_length, &
+          opt%q_quadratic, opt%q_linear_limited, state%zone_density, state%zone_sound_speed, &
+          state%zone_length, &
           state%zone_divergence, state%zone_viscosity)
       call mesh%zone_halo%exchange(state%zone_viscosity)
     else
@@ -86,13 +88,16 @@ contains
 
   !> Corner forces of every local zone and the force of every owned node
   !> (internal + applied pressure) at positions x, velocities v.
-  subroutine hydro_forces(mesh, state, opt, bc, x, v, stage_dt)
+  subroutine hydro_forces(mesh, state, opt, bc, x, v, stage_dt, stress)
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(inout) :: state
     type(hydro_options_t), intent(in) :: opt
     type(boundary_t), intent(inout) :: bc
     real(rk), intent(in) :: x(:, :), v(:, :)
     real(rk), intent(in) :: stage_dt !< 0 in the predictor, dt in the corrector
+    real(rk), intent(in), optional :: stress(:, :) !< (6, nzone) deviatoric stress to apply
+    integer :: z, k
+    real(rk) :: s(6), b(3)
     real(rk) :: unused(3, 4, 1)
     if (opt%hourglass == HOURGLASS_STIFFNESS) then
       call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
@@ -104,6 +109,22 @@ contains
           state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
           unused, unused, state%corner_force)
+    end if
+    ! Deviatoric part: F_k -= s . dV/dx_k (sigma = -p I + s); zero rows cost little.
+    if (present(stress)) then
+      do z = 1, mesh%nzone
+        s = stress(:, z)
+        if (all(s == 0.0_rk)) cycle
+        do k = 1, 8
+          b = state%zone_bmatrix(:, k, z)
+          state%corner_force(1, k, z) = state%corner_force(1, k, z) &
+              - (s(1) * b(1) + s(4) * b(2) + s(6) * b(3))
+          state%corner_force(2, k, z) = state%corner_force(2, k, z) &
+              - (s(4) * b(1) + s(2) * b(2) + s(5) * b(3))
+          state%corner_force(3, k, z) = state%corner_force(3, k, z) &
+              - (s(6) * b(1) + s(5) * b(2) + s(3) * b(3))
+        end do
+      end do
     end if
     call node_gather_forces(mesh%nnode_owned, 8 * mesh%nzone, mesh%corner_start, &
         mesh%corner_list, state%corner_force, state%node_force)
@@ -140,10 +161,11 @@ contains
           state%node_mass(n)
     end do
     call boundary_constrain(bc, v_new, .true.)
-    ! Work of the constraint reactions and of the applied pressure.
+    call boundary_wall(bc, state%node_position_old, v_new)
+    ! Work of the constraint and wall reactions and of the applied pressure.
     work = 0.0_rk
-    do k = 1, bc%nconstrained
-      n = bc%node(k)
+    do k = 1, bc%nkinematic
+      n = bc%kinematic_node(k)
       vavg = 0.5_rk * (state%node_velocity_old(:, n) + v_new(:, n))
       work = work + dot_product(state%node_mass(n) * (v_new(:, n) - &
           state%node_velocity_old(:, n)) - step * state%node_force(:, n), vavg)
@@ -154,6 +176,37 @@ contains
       work = work + step * dot_product(bc%pnode_force(:, k), vavg)
     end do
   end subroutine hydro_velocity_update
+
+  !> Deviatoric stress of every local zone of a material with strength:
+  !> to = return(from + step (2 G D' + W s - s W)) with the velocity gradient of
+  !> v on the current B-matrix; plastic strain accumulates when accumulate.
+  subroutine hydro_strength_update(mesh, state, materials, mz, v, step, from, to, accumulate)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_t), intent(in) :: materials(:)
+    type(material_zones_t), intent(in) :: mz
+    real(rk), intent(in) :: v(:, :)
+    real(rk), intent(in) :: step
+    real(rk), intent(in) :: from(:, :)
+    real(rk), intent(inout) :: to(:, :)
+    logical, intent(in) :: accumulate
+    integer :: m, i, z, k
+    real(rk) :: vz(3, 8), grad(3, 3), dp
+    do m = 1, size(materials)
+      if (materials(m)%strength == STRENGTH_NONE) cycle
+      do i = mz%start(m), mz%start(m + 1) - 1
+        z = mz%list(i)
+        if (.not. (state%zone_volume(z) > 0.0_rk)) cycle
+        do k = 1, 8
+          vz(:, k) = v(:, mesh%zone_node(k, z))
+        end do
+        call velocity_gradient(vz, state%zone_bmatrix(:, :, z), state%zone_volume(z), grad)
+        call deviatoric_update(from(:, z), grad, step, materials(m)%shear_modulus, &
+            materials(m)%yield_stress, to(:, z), dp)
+        if (accumulate) state%zone_plastic_strain(z) = state%zone_plastic_strain(z) + dp
+      end do
+    end do
+  end subroutine hydro_strength_update
 
   !> Stability limit over owned zones (local), the zone and the reason.
   subroutine hydro_time_step(mesh, state, opt, dt, zone, reason)

@@ -253,21 +253,23 @@ contains
   !> phi_d = max(0, min((r- + r+)/2, 2 r-, 2 r+, 1)), r+- the neighbours'
   !> stretching rates over the zone's own; the zone takes phi = min_d phi_d
   !> (smooth only if smooth in every direction) and
-  !> q = rho (1 - phi)^2 C2 (L D)^2 + rho C1 c L |D| for D = div v < 0: the
-  !> linear term is not limited (it vanishes in cold smooth inflow anyway, and
-  !> damping in hot regions keeps the Noh axes from jetting into a collapse).
+  !> q = rho (1 - phi)^2 C2 (L D)^2 + rho (1 - phi_l) C1 c L |D| for D = div v < 0,
+  !> phi_l = phi when linear_limited (default), else 0: an unlimited linear term
+  !> damps hot regions (it keeps the Noh axes from jetting into a collapse) but
+  !> dissipates smooth and weak waves (an elastic bar loses 3.6% of its rebound).
   !> A missing neighbour counts as r = 1 on a symmetry plane, r = 0 elsewhere.
   subroutine zone_limited_viscosity(n, neighbour, neighbour_face, symmetric, gradient, &
-      q_linear, q_quadratic, density, sound_speed, length, divergence, q)
+      q_linear, q_quadratic, linear_limited, density, sound_speed, length, divergence, q)
     integer, intent(in) :: n
     integer, intent(in) :: neighbour(:, :), neighbour_face(:, :) !< (6, nzone)
     logical, intent(in) :: symmetric(:, :) !< (6, nzone) face on a symmetry plane
     real(rk), intent(in) :: gradient(:, :)
     real(rk), intent(in) :: q_linear, q_quadratic
+    logical, intent(in) :: linear_limited !< limit the linear term too
     real(rk), intent(in) :: density(:), sound_speed(:), length(:), divergence(:)
     real(rk), intent(inout) :: q(:)
     integer :: z, d
-    real(rk) :: g, rm, rp, phi, du
+    real(rk) :: g, rm, rp, phi, du, phi_linear
     do z = 1, n
       if (divergence(z) >= 0.0_rk) then
         q(z) = 0.0_rk
@@ -282,8 +284,10 @@ contains
         phi = min(phi, max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk)))
       end do
       du = length(z) * divergence(z)
+      phi_linear = 0.0_rk
+      if (linear_limited) phi_linear = phi
       q(z) = density(z) * (q_quadratic * (du * (1.0_rk - phi))**2 &
-          - q_linear * sound_speed(z) * du)
+          - q_linear * sound_speed(z) * du * (1.0_rk - phi_linear))
     end do
 
   contains

@@ -19,6 +19,7 @@ module hydro_state
     real(rk) :: q_linear = 0.5_rk !< linear viscosity coefficient C1
     real(rk) :: q_quadratic = 2.0_rk / 3.0_rk !< quadratic viscosity coefficient C2
     logical :: q_limiter = .true. !< monotonic limiter of the viscosity
+    logical :: q_linear_limited = .true. !< the limiter acts on the linear term too
     integer :: hourglass = HOURGLASS_VISCOUS !< HOURGLASS_* type
     real(rk) :: hourglass_coefficient = 0.1_rk !< Flanagan-Belytschko coefficient
   end type hydro_options_t
@@ -47,6 +48,9 @@ module hydro_state
     real(rk), allocatable :: zone_hourglass(:, :, :) !< (3, 4, nzone) stiffness state
     real(rk), allocatable :: zone_hourglass_new(:, :, :) !< its update during a cycle
     real(rk), allocatable :: corner_force(:, :, :) !< (3, 8, nzone)
+    real(rk), allocatable :: zone_stress(:, :) !< (6, nzone) deviatoric stress (strength only)
+    real(rk), allocatable :: zone_stress_half(:, :) !< its value at t^n+1/2
+    real(rk), allocatable :: zone_plastic_strain(:) !< equivalent plastic strain
     real(rk) :: time = 0.0_rk !< t^n
     real(rk) :: dt = 0.0_rk !< step of the current cycle
     real(rk) :: dt_previous = 0.0_rk !< step of the previous cycle (0 before the first)
@@ -60,10 +64,11 @@ module hydro_state
 contains
 
   !> Allocate every field for nnode nodes and nzone zones, zeroed.
-  subroutine state_init(this, nnode, nzone, stiffness)
+  subroutine state_init(this, nnode, nzone, stiffness, strength)
     type(state_t), intent(out) :: this !< intent(out) frees and resets everything
     integer, intent(in) :: nnode, nzone
     logical, intent(in) :: stiffness !< hourglass stiffness state needed
+    logical, intent(in) :: strength !< some material has strength: deviatoric state needed
     allocate(this%node_position(3, nnode), this%node_velocity(3, nnode), this%node_mass(nnode))
     allocate(this%node_force(3, nnode), this%node_position_old(3, nnode))
     allocate(this%node_velocity_old(3, nnode), this%node_velocity_half(3, nnode))
@@ -78,6 +83,13 @@ contains
       allocate(this%zone_hourglass(3, 4, nzone), this%zone_hourglass_new(3, 4, nzone))
       this%zone_hourglass = 0.0_rk
       this%zone_hourglass_new = 0.0_rk
+    end if
+    if (strength) then
+      allocate(this%zone_stress(6, nzone), this%zone_stress_half(6, nzone))
+      allocate(this%zone_plastic_strain(nzone))
+      this%zone_stress = 0.0_rk
+      this%zone_stress_half = 0.0_rk
+      this%zone_plastic_strain = 0.0_rk
     end if
     this%node_position = 0.0_rk
     this%node_velocity = 0.0_rk

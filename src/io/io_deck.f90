@@ -7,9 +7,11 @@ module io_deck
   use core_status, only: status_t
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
-  use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library
+  use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library, &
+      STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC
   use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
-  use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE
+  use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE, &
+      BC_WALL
   use hydro_initial, only: region_t, UNSET
   use parallel_env, only: par_rank, par_bcast
   implicit none
@@ -76,14 +78,14 @@ contains
           'restart', 'cfl', 'dt_initial', 'dt_max', 'dt_min', 'dt_growth', 'dvol_max', &
           'fault_cycle', 'fault_kind']
     case ('hydro')
-      keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'q_limiter', 'hourglass', &
-          'hourglass_coefficient']
+      keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'q_limiter', &
+          'q_linear_limited', 'hourglass', 'hourglass_coefficient']
     case ('mesh')
       keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
           'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb']
     case ('material')
       keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma', 'library', 'rho0', 'c0', 's1', &
-          'gamma0', 'b', 'p_min']
+          'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress']
     case ('block')
       keys = [character(len=KEY_LEN) :: 'name', 'material', 'box']
     case ('region')
@@ -344,12 +346,14 @@ contains
     type(status_t), intent(inout) :: status
     real(rk) :: q_linear, q_quadratic, hourglass_coefficient
     character(len=32) :: hourglass
-    logical :: q_limiter
+    logical :: q_limiter, q_linear_limited
     integer :: ios
     character(len=256) :: msg
-    namelist /hydro/ q_linear, q_quadratic, q_limiter, hourglass, hourglass_coefficient
+    namelist /hydro/ q_linear, q_quadratic, q_limiter, q_linear_limited, hourglass, &
+        hourglass_coefficient
 
     q_limiter = opt%q_limiter
+    q_linear_limited = opt%q_linear_limited
     q_linear = opt%q_linear
     q_quadratic = opt%q_quadratic
     hourglass = 'viscous'
@@ -375,6 +379,7 @@ contains
     opt%q_linear = q_linear
     opt%q_quadratic = q_quadratic
     opt%q_limiter = q_limiter
+    opt%q_linear_limited = q_linear_limited
     opt%hourglass_coefficient = hourglass_coefficient
   end subroutine read_hydro
 
@@ -466,13 +471,15 @@ contains
     type(status_t), intent(inout) :: status
     logical, intent(inout) :: read_ok !< set false when the group cannot be read
     character(len=NAME_LEN) :: name, library
-    character(len=32) :: eos
-    real(rk) :: gamma, rho0, c0, s1, gamma0, b, p_min
+    character(len=32) :: eos, strength
+    real(rk) :: gamma, rho0, c0, s1, gamma0, b, p_min, shear_modulus, yield_stress
+    real(rk) :: lib_shear, lib_yield
     integer :: ios
     logical :: found
     character(len=256) :: msg
     character(len=16) :: where
-    namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min
+    namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min, strength, &
+        shear_modulus, yield_stress
 
     write(where, '(a,i0,a)') '&material(', index, ')'
     name = ''
@@ -485,6 +492,11 @@ contains
     gamma0 = UNSET
     b = UNSET
     p_min = UNSET
+    strength = 'none'
+    shear_modulus = UNSET
+    yield_stress = UNSET
+    lib_shear = UNSET
+    lib_yield = UNSET
     read(sect, nml=material, iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(trim(where)//': cannot read the group: '//trim(msg))
@@ -508,7 +520,7 @@ contains
     case ('mie_gruneisen')
       mat%eos = EOS_MIE_GRUNEISEN
       if (len_trim(library) > 0) then
-        call material_library(to_lower(library), mat%mg, found)
+        call material_library(to_lower(library), mat%mg, lib_shear, lib_yield, found)
         if (.not. found) call status%add(trim(where)//': library: '''//trim(library)// &
             ''' is not a built-in material (valid: al6061, cu_ofhc, ss304, be_verney)')
       end if
@@ -533,9 +545,30 @@ contains
       if (gamma /= UNSET) call status%add(trim(where)//': gamma: only for eos = ''ideal_gas''')
     case ('')
       call status%add(trim(where)//': eos: required (valid: ideal_gas, mie_gruneisen)')
+      return
     case default
       call status%add(trim(where)//': eos: '''//trim(eos)//''' is not an equation of '// &
           'state (valid: ideal_gas, mie_gruneisen)')
+    end select
+    ! Strength.
+    select case (to_lower(strength))
+    case ('none')
+      mat%strength = STRENGTH_NONE
+      if (shear_modulus /= UNSET .or. yield_stress /= UNSET) call status%add(trim(where)// &
+          ': strength: shear_modulus and yield_stress need strength = ''elastic_plastic''')
+    case ('elastic_plastic')
+      mat%strength = STRENGTH_ELASTIC_PLASTIC
+      mat%shear_modulus = lib_shear
+      mat%yield_stress = lib_yield
+      if (shear_modulus /= UNSET) mat%shear_modulus = shear_modulus
+      if (yield_stress /= UNSET) mat%yield_stress = yield_stress
+      if (.not. (mat%shear_modulus > 0.0_rk)) call status%add(trim(where)// &
+          ': shear_modulus: required (> 0) for strength = ''elastic_plastic'' (or give library)')
+      if (.not. (mat%yield_stress > 0.0_rk)) call status%add(trim(where)// &
+          ': yield_stress: required (> 0) for strength = ''elastic_plastic'' (or give library)')
+    case default
+      call status%add(trim(where)//': strength: '''//trim(strength)//''' is not a strength '// &
+          'model (valid: none, elastic_plastic)')
     end select
   end subroutine read_material
 
@@ -693,6 +726,8 @@ contains
       bc%kind = BC_FREE
     case ('symmetry')
       bc%kind = BC_SYMMETRY
+    case ('wall')
+      bc%kind = BC_WALL
     case ('velocity')
       bc%kind = BC_VELOCITY
       if (any(velocity == UNSET)) call status%add(trim(where)//': velocity: required '// &
@@ -704,10 +739,10 @@ contains
           'type = ''pressure''')
       bc%pressure = pressure
     case ('')
-      call status%add(trim(where)//': type: required (valid: free, symmetry, velocity, pressure)')
+      call status%add(trim(where)//': type: required (valid: free, symmetry, wall, velocity, pressure)')
     case default
       call status%add(trim(where)//': type: '''//trim(type)//''' is not a boundary '// &
-          'condition (valid: free, symmetry, velocity, pressure)')
+          'condition (valid: free, symmetry, wall, velocity, pressure)')
     end select
     if (bc%kind /= BC_VELOCITY .and. any(velocity /= UNSET)) call status%add(trim(where)// &
         ': velocity: only for type = ''velocity''')

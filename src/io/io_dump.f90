@@ -104,6 +104,18 @@ contains
     call zone_field('/zones/volume', state%zone_volume)
     call zone_field('/zones/mass', state%zone_mass)
 
+    if (allocated(state%zone_stress)) then
+      call zone_field('/zones/plastic_strain', state%zone_plastic_strain)
+      deallocate(zblock)
+      allocate(zblock(6, mesh%zone_io%nblock))
+      call mesh%zone_io%to_block(state%zone_stress(:, 1:nzo), zblock)
+      call h5_write_real_rows(file, '/zones/deviatoric_stress', zblock, mesh%nzone_global, &
+          zone_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      deallocate(zblock)
+      allocate(zblock(1, mesh%zone_io%nblock))
+    end if
+
     ! Restart-only state.
     call h5_create_group(file, '/restart', e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -408,6 +420,18 @@ contains
     state%node_mass(1:nno) = zlocal_nodes(1, :)
     call read_zone('/zones/mass', state%zone_mass)
     call read_zone('/zones/specific_internal_energy', state%zone_energy)
+    if (allocated(state%zone_stress)) then
+      call read_zone('/zones/plastic_strain', state%zone_plastic_strain)
+      deallocate(zblock, zlocal)
+      allocate(zblock(6, mesh%zone_io%nblock), zlocal(6, mesh%nzone))
+      call h5_read_real_rows(file, '/zones/deviatoric_stress', zblock, zone_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call mesh%zone_io%from_block(zblock, zlocal(:, 1:nzo))
+      call mesh%zone_halo%exchange(zlocal)
+      state%zone_stress = zlocal
+      deallocate(zblock, zlocal)
+      allocate(zblock(1, mesh%zone_io%nblock), zlocal(1, mesh%nzone))
+    end if
     if (allocated(state%zone_hourglass)) then
       deallocate(zblock, zlocal)
       allocate(zblock(12, mesh%zone_io%nblock), zlocal(12, mesh%nzone))

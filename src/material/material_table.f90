@@ -10,6 +10,7 @@ module material_table
   public :: material_eos, material_energy_from_pressure, material_library
 
   integer, parameter, public :: EOS_IDEAL_GAS = 1, EOS_MIE_GRUNEISEN = 2
+  integer, parameter, public :: STRENGTH_NONE = 0, STRENGTH_ELASTIC_PLASTIC = 1
   integer, parameter, public :: MATERIAL_NAME_LEN = 32
 
   !> One material.
@@ -19,6 +20,9 @@ module material_table
     real(rk) :: gamma = 1.4_rk !< ideal gas: ratio of specific heats
     type(mie_gruneisen_t) :: mg = mie_gruneisen_t(rho0=0.0_rk, c0=0.0_rk, s1=0.0_rk, &
         gamma0=0.0_rk) !< Mie-Gruneisen data
+    integer :: strength = STRENGTH_NONE !< STRENGTH_* model
+    real(rk) :: shear_modulus = 0.0_rk !< G
+    real(rk) :: yield_stress = huge(1.0_rk) !< Y (huge = elastic)
   end type material_t
 
 contains
@@ -44,6 +48,14 @@ contains
         sound_speed(z) = mg_sound_speed(mat%mg, density(z), energy(z), pressure(z))
       end do
     end select
+    ! With strength the signal speed is the longitudinal one, sqrt(c^2 + 4G/(3 rho)).
+    if (mat%strength /= STRENGTH_NONE) then
+      do i = 1, size(list)
+        z = list(i)
+        if (density(z) > 0.0_rk) sound_speed(z) = sqrt(sound_speed(z)**2 + &
+            4.0_rk * mat%shear_modulus / (3.0_rk * density(z)))
+      end do
+    end if
   end subroutine material_eos
 
   !> Specific internal energy that gives pressure p at density rho.
@@ -66,22 +78,34 @@ contains
   !> (OFHC copper), 'ss304' (304 stainless steel: recalled values, still to be
   !> checked against a primary source), 'be_verney' (beryllium of the Verney
   !> problem). found is false for any other name.
-  subroutine material_library(name, mg, found)
+  subroutine material_library(name, mg, shear, yield, found)
     character(len=*), intent(in) :: name
     type(mie_gruneisen_t), intent(inout) :: mg
+    real(rk), intent(out) :: shear !< G0
+    real(rk), intent(out) :: yield !< Y0
     logical, intent(out) :: found
     found = .true.
     select case (name)
     case ('al6061')
       mg = mie_gruneisen_t(rho0=2.703_rk, c0=0.524_rk, s1=1.40_rk, gamma0=1.97_rk, b=0.48_rk)
+      shear = 0.276_rk
+      yield = 0.0029_rk
     case ('cu_ofhc')
       mg = mie_gruneisen_t(rho0=8.93_rk, c0=0.394_rk, s1=1.489_rk, gamma0=2.02_rk, b=0.47_rk)
+      shear = 0.477_rk
+      yield = 0.0012_rk
     case ('ss304')
       mg = mie_gruneisen_t(rho0=7.90_rk, c0=0.457_rk, s1=1.49_rk, gamma0=1.93_rk, b=0.5_rk)
+      shear = 0.770_rk
+      yield = 0.0034_rk
     case ('be_verney')
       mg = mie_gruneisen_t(rho0=1.845_rk, c0=0.800_rk, s1=1.124_rk, gamma0=1.11_rk, b=0.16_rk)
+      shear = 1.51_rk
+      yield = 0.0033_rk
     case default
       found = .false.
+      shear = 0.0_rk
+      yield = 0.0_rk
     end select
   end subroutine material_library
 

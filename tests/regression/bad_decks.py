@@ -141,6 +141,14 @@ def build_cases():
     c.append(Case("repeated_key",
                   sub("  t_end = 0.05\n", "  t_end = 0.05, t_end = 2.0\n"),
                   ["&control: t_end: given twice in one group"]))
+    c.append(Case("material_unknown_strength",
+                  sub("name = 'gas', eos", "name = 'gas', strength = 'rigid', eos"),
+                  ["&material(1): strength: 'rigid' is not a strength model",
+                   "valid: none, elastic_plastic"]))
+    c.append(Case("material_unknown_library",
+                  sub("name = 'gas', eos = 'ideal_gas', gamma = 1.4",
+                      "name = 'gas', eos = 'mie_gruneisen', library = 'unobtainium'"),
+                  ["&material(1): library: 'unobtainium' is not a built-in material"]))
     c.append(Case("unknown_key_other_group",
                   sub("name = 'gas', eos", "name = 'gas', gama = 1.4, eos"),
                   ["&material: gama: unknown key", "valid keys: name, eos, gamma"]))
@@ -246,9 +254,9 @@ def build_cases():
     c.append(Case("boundary_unknown_set", sub("set = 'xmax'", "set = 'xhigh'"),
                   ["&boundary(2): set: 'xhigh' is not a face set", "valid: xmin"]))
     c.append(Case("boundary_unknown_type",
-                  sub("set = 'xmax', type = 'symmetry'", "set = 'xmax', type = 'wall'"),
-                  ["&boundary(2): type: 'wall' is not a boundary condition",
-                   "valid: free, symmetry, velocity, pressure"]))
+                  sub("set = 'xmax', type = 'symmetry'", "set = 'xmax', type = 'rigid'"),
+                  ["&boundary(2): type: 'rigid' is not a boundary condition",
+                   "valid: free, symmetry, wall, velocity, pressure"]))
     c.append(Case("boundary_velocity_without_velocity",
                   sub("set = 'xmin', type = 'symmetry'", "set = 'xmin', type = 'velocity'"),
                   ["&boundary(1): velocity: required (3 components) for type = 'velocity'"]))

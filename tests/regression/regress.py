@@ -21,6 +21,11 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   window   --deck D --np N --axis x --range A B --target 4 --tol 0.05
                                       zone densities with centroid in [A, B] all within
                                       tol (relative) of target
+  wavefront --deck D --target C --target-velocity UP --origin X0 --tol T
+                                      a planar front (|u| = UP/2) moves at C within T
+  rebound  --deck D --target 2L/c --tol T
+                                      bar on a rigid wall: momentum reversed within T,
+                                      contact (momentum changing) lasts 2L/c within T
   stability --deck D --np N       runs to the end (exit 0) or stops through the failure
                                       path (exit 2 with its message and final dump); no
                                       dump holds a NaN or infinity
@@ -297,11 +302,60 @@ def cmd_stability(args):
     check("%d dumps, every value finite" % len(dumps), len(dumps) >= 2 and not bad, str(bad))
 
 
+def cmd_wavefront(args):
+    """Speed of a planar front: where the x velocity crosses half the piston speed."""
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "wavefront")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    d = dump.load(final_dump(wd))
+    x = d["coordinates"][:, 0]
+    v = d["node_velocity"][:, 0]
+    t = float(d["attrs"]["time"])
+    order = np.argsort(x)
+    x, v = x[order], v[order]
+    half = 0.5 * args.target_velocity
+    k = np.where(np.abs(v) > abs(half))[0].max()
+    front = x[k] + (x[k + 1] - x[k]) * (abs(v[k]) - abs(half)) / (abs(v[k]) - abs(v[k + 1]))
+    speed = (front - args.origin) / t
+    check("front speed %.5f vs expected %.5f: error %.3f%% <= %.2f%%"
+          % (speed, args.target, 100 * abs(speed / args.target - 1), 100 * args.tol),
+          abs(speed / args.target - 1) <= args.tol)
+
+
+def cmd_rebound(args):
+    """A bar hitting a rigid wall: contact time 2L/c and rebound at its speed."""
+    import numpy as np
+    wd = os.path.join(args.workdir, "rebound")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    with open(os.path.join(wd, "history.txt")) as f:
+        header = f.readline().split()[1:]
+        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+    t = rows[:, header.index("time")]
+    p = rows[:, header.index("momentum_x")]
+    p0 = p[0]
+    final = p[-1]
+    check("rebound velocity ratio %.4f vs -1 within %.1f%%" % (final / p0, 100 * args.tol),
+          abs(final / p0 + 1.0) <= args.tol)
+    # contact ends when the momentum reaches its final value (no force after release)
+    moving = np.where(np.abs(p - final) > 1e-3 * abs(p0))[0]
+    t_end = t[moving.max() + 1] if moving.size else t[0]
+    check("contact duration %.5f vs 2L/c = %.5f within %.1f%%"
+          % (t_end, args.target, 100 * args.tol), abs(t_end / args.target - 1) <= args.tol)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
-                                        "convergence", "window", "interface", "stability"])
+                                        "convergence", "window", "interface", "stability",
+                                        "wavefront", "rebound"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -323,6 +377,8 @@ def main():
     p.add_argument("--range", type=float, nargs=2)
     p.add_argument("--target", type=float)
     p.add_argument("--zones-tol", type=float, default=2.0)
+    p.add_argument("--target-velocity", type=float, default=0.0)
+    p.add_argument("--origin", type=float, default=0.0)
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
     args = p.parse_args()
     args.deck = os.path.abspath(args.deck)
