@@ -40,6 +40,7 @@ import math
 import os
 import platform
 import re
+import resource
 import shlex
 import subprocess
 import sys
@@ -57,7 +58,8 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 # 1-rank run takes roughly 2-50 s on a ~0.8 us/zone-cycle machine).
 SPEED_SIZES = [(20, 1.0), (30, 1.0), (45, 0.3), (60, 0.1)]
 SPEED_RANKS = [1, 2]
-SPEED_MIN_RUNS, SPEED_MAX_RUNS, SPEED_MIN_SECONDS = 2, 5, 10.0
+SPEED_MIN_RUNS, SPEED_MAX_RUNS, SPEED_MIN_SECONDS = 2, 4, 10.0
+DISTURBED = 0.25        # a run during which other processes used more cores is disturbed
 
 # Targets (project issue) and the LULESH reference figure.
 TARGET_1RANK_US = 0.55
@@ -117,6 +119,23 @@ def make_deck(text, n, t_end=None, control="", hydro=""):
     return deck
 
 
+def cpu_sample():
+    """(monotonic time, busy CPU seconds of the machine, CPU seconds of our children).
+
+    busy = user + nice + system + irq + softirq + steal of /proc/stat; the
+    difference of the last two over a run is the CPU taken by other processes.
+    """
+    tick = os.sysconf("SC_CLK_TCK")
+    try:
+        with open("/proc/stat", encoding="utf-8") as handle:
+            fields = [int(v) for v in handle.readline().split()[1:]]
+        busy = (sum(fields[0:3]) + sum(fields[5:8])) / tick
+    except (OSError, ValueError):
+        busy = 0.0
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return time.monotonic(), busy, usage.ru_utime + usage.ru_stime
+
+
 def run_case(exe, deck, ranks=1, problem=None):
     """Run one deck; return a dict with cycles, loop seconds, rss and L1_rho.
 
@@ -130,8 +149,14 @@ def run_case(exe, deck, ranks=1, problem=None):
             cmd = [sys.executable, "-c", WRAPPER, exe, "deck.nml"]
         else:
             cmd = ["mpirun", "-np", str(ranks), exe, "deck.nml"]
+        before = cpu_sample()
         proc = subprocess.run(cmd, cwd=wd, env=ENV, capture_output=True, text=True)
+        after = cpu_sample()
         out = {"ranks": ranks, "rc": proc.returncode}
+        # CPU used by other processes while this run was going, in cores
+        elapsed = after[0] - before[0]
+        foreign = (after[1] - before[1]) - (after[2] - before[2])
+        out["other_load"] = max(foreign, 0.0) / elapsed if elapsed > 0 else 0.0
         rss = re.search(r"MAXRSS_KB (\d+)", proc.stderr)
         out["rss_kb"] = int(rss.group(1)) if rss else None
         done = DONE_RE.search(proc.stdout)
@@ -173,8 +198,9 @@ def speed_runs(exe, quick):
                 runs.append(run)
                 if "error" in run:
                     break
-                total = sum(r["loop"] for r in runs)
-                if len(runs) >= SPEED_MAX_RUNS or (len(runs) >= SPEED_MIN_RUNS
+                quiet = [r for r in runs if r["other_load"] <= DISTURBED]
+                total = sum(r["loop"] for r in quiet)
+                if len(runs) >= SPEED_MAX_RUNS or (len(quiet) >= SPEED_MIN_RUNS
                                                    and total >= SPEED_MIN_SECONDS):
                     break
             good = [r for r in runs if "error" not in r]
@@ -182,6 +208,7 @@ def speed_runs(exe, quick):
                      "runs": len(runs), "loops": [r["loop"] for r in good],
                      "cycles": [r["cycles"] for r in good],
                      "rss_kb": [r["rss_kb"] for r in good if r["rss_kb"]],
+                     "other_load": [r["other_load"] for r in good],
                      "errors": [r["error"] for r in runs if "error" in r]}
             results.append(entry)
             if good:
@@ -189,7 +216,8 @@ def speed_runs(exe, quick):
                 log("speed %d^3 ranks %d: %d cycles, best loop %.3f s of %s, "
                     "%.0f ns wall/zone-cycle, rss %s kB"
                     % (n, ranks, good[0]["cycles"], best,
-                       ["%.3f" % r["loop"] for r in good],
+                       ["%.3f (other load %.2f)" % (r["loop"], r["other_load"])
+                        for r in good],
                        best / (n ** 3 * good[0]["cycles"]) * 1e9, entry["rss_kb"]))
             else:
                 log("speed %d^3 ranks %d: FAILED %s" % (n, ranks, entry["errors"]))
@@ -213,6 +241,7 @@ def wp_runs(exe, problem, sizes):
                      "zones": n if problem == "sod" else n ** 3,
                      "cycles": run.get("cycles"), "loop": min(loops) if loops else None,
                      "loops": loops, "L1_rho": run.get("L1_rho"), "rc": run["rc"],
+                     "other_load": run.get("other_load"),
                      "error": run.get("error")}
             results.append(entry)
             if entry["error"]:
