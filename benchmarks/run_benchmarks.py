@@ -267,7 +267,10 @@ def speed_table(speed):
         cycles = e["cycles"][0]
         best = min(e["loops"])
         zc = e["zones"] * cycles
+        loads = e.get("other_load") or [0.0] * len(e["loops"])
         row = dict(e, ok=True, cycle=cycles, best=best,
+                   best_other=loads[e["loops"].index(best)],
+                   disturbed=sum(1 for v in loads if v > DISTURBED),
                    spread=(max(e["loops"]) / best - 1.0) * 100.0,
                    wall_ns=best / zc * 1e9, core_ns=best * e["ranks"] / zc * 1e9,
                    rate=zc / best, cycles_consistent=len(set(e["cycles"])) == 1)
@@ -433,9 +436,13 @@ def render(data, out_path, img_dir):
         "default hydro options, cfl 0.5) with `t_end` shortened for the large meshes "
         "so that runs stay short; the cost per zone-cycle of this Lagrangian scheme "
         "does not depend on the state of the gas, so the short runs measure the same "
-        "kernels as full ones. Each case was run %d-%d times (until %.0f s of loop "
-        "time were collected); the table gives the best run and the spread "
-        "(slowest/best - 1)." % (SPEED_MIN_RUNS, SPEED_MAX_RUNS, SPEED_MIN_SECONDS))
+        "kernels as full ones. Each case was repeated until at least %d undisturbed "
+        "runs and %.0f s of undisturbed loop time were collected, at most %d runs; a "
+        "run is *disturbed* if other processes on the VM used more than %.2f cores "
+        "during it (from /proc/stat minus this script's own children). The table "
+        "gives the best run, the CPU other processes used during that run "
+        "('other load', cores), and the spread of all runs (slowest/best - 1)."
+        % (SPEED_MIN_RUNS, SPEED_MIN_SECONDS, SPEED_MAX_RUNS, DISTURBED))
     add("")
     add("Two definitions, both per zone-cycle (one zone advanced one cycle; a cycle "
         "is a full predictor-corrector step, two force evaluations):")
@@ -445,17 +452,19 @@ def render(data, out_path, img_dir):
     add("* **core** = loop wall time x ranks / (zones x cycles): aggregate core "
         "time per zone-cycle (equal to wall on 1 rank).")
     add("")
-    add("| mesh | zones | t_end | ranks | cycles | runs | best loop s | spread | "
-        "wall ns/zone-cycle | core ns/zone-cycle | zone-cycles/s | speed-up | "
-        "parallel eff. | peak RSS MB |")
-    add("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    add("| mesh | zones | t_end | ranks | cycles | runs (disturbed) | best loop s | "
+        "other load | spread | wall ns/zone-cycle | core ns/zone-cycle | "
+        "zone-cycles/s | speed-up | parallel eff. | peak RSS MB |")
+    add("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         if not r["ok"]:
-            add("| %d^3 | %d | %g | %d | - | %d | FAILED | | | | | | | |"
+            add("| %d^3 | %d | %g | %d | - | %d | FAILED | | | | | | | | |"
                 % (r["n"], r["zones"], r["t_end"], r["ranks"], r["runs"]))
             continue
-        add("| %d^3 | %d | %g | %d | %d | %d | %.3f | %.1f%% | %.0f | %.0f | %.3g | %s | %s | %s |"
-            % (r["n"], r["zones"], r["t_end"], r["ranks"], r["cycle"], r["runs"], r["best"],
+        add("| %d^3 | %d | %g | %d | %d | %d (%d) | %.3f | %.2f | %.1f%% | **%.0f** | %.0f "
+            "| %.3g | %s | %s | %s |"
+            % (r["n"], r["zones"], r["t_end"], r["ranks"], r["cycle"], r["runs"],
+               r["disturbed"], r["best"], r["best_other"],
                r["spread"], r["wall_ns"], r["core_ns"], r["rate"],
                "%.2f" % r["speedup"] if "speedup" in r else "-",
                "%.0f%%" % (100 * r["efficiency"]) if "efficiency" in r else "-",

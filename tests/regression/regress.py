@@ -350,12 +350,61 @@ def cmd_rebound(args):
           % (t_end, args.target, 100 * args.tol), abs(t_end / args.target - 1) <= args.tol)
 
 
+def cmd_twowave(args):
+    """Elastic-plastic piston problem: elastic precursor and plastic wave.
+
+    --target is the longitudinal speed c_L, --hel the 1D-strain Hugoniot
+    elastic limit (stress), --c0 and --s1 the Hugoniot fit, --rho0 the density,
+    --target-velocity the piston speed; the run starts at t = 0 with the piston
+    at --origin."""
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "twowave")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    d = dump.load(final_dump(wd))
+    t = float(d["attrs"]["time"])
+    x = d["coordinates"][:, 0]
+    v = d["node_velocity"][:, 0]
+    order = np.argsort(x)
+    x, v = x[order], v[order]
+    up = args.target_velocity
+    u_hel = args.hel / (args.rho0 * args.target)
+
+    def crossing(level):
+        k = np.where(v > level)[0].max()
+        return x[k] + (x[k + 1] - x[k]) * (v[k] - level) / (v[k] - v[k + 1])
+    elastic = (crossing(0.5 * u_hel) - args.origin) / t
+    check("elastic precursor speed %.5f vs c_L %.5f within 2%%" % (elastic, args.target),
+          abs(elastic / args.target - 1) <= 0.02)
+    # Precursor plateau: zones between the two fronts.
+    c = dump.zone_centroids(d)[:, 0]
+    plastic_front = crossing(0.5 * (u_hel + up))
+    elastic_front = crossing(0.5 * u_hel)
+    gap = elastic_front - plastic_front
+    sel = (c > plastic_front + 0.25 * gap) & (c < elastic_front - 0.25 * gap)
+    sxx = d["deviatoric_stress"][:, 0] if d["deviatoric_stress"].ndim == 2 else None
+    sigma = d["pressure"][sel] - sxx[sel]
+    hel = float(np.median(sigma))
+    check("precursor amplitude %.6f vs HEL %.6f within 3%% (%d zones)" % (hel, args.hel, sel.sum()),
+          sel.sum() > 0 and abs(hel / args.hel - 1) <= 0.03)
+    # Plastic wave: speed relative to the material ahead of it against c0 + s1 up.
+    plastic_lab = (plastic_front - args.origin) / t
+    behind = (c > args.origin + 0.1 * plastic_lab * t) & (c < plastic_front - 0.05 * plastic_lab * t)
+    u_measured = float(np.median(dump.zone_velocity(d)[behind, 0])) if behind.any() else up
+    expected = args.c0 + args.s1 * u_measured
+    check("plastic wave speed %.5f vs c0 + s up = %.5f (up = %.5f) within 3%%"
+          % (plastic_lab, expected, u_measured), abs(plastic_lab / expected - 1) <= 0.03)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
                                         "convergence", "window", "interface", "stability",
-                                        "wavefront", "rebound"])
+                                        "wavefront", "rebound", "twowave"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -379,6 +428,10 @@ def main():
     p.add_argument("--zones-tol", type=float, default=2.0)
     p.add_argument("--target-velocity", type=float, default=0.0)
     p.add_argument("--origin", type=float, default=0.0)
+    p.add_argument("--hel", type=float)
+    p.add_argument("--c0", type=float)
+    p.add_argument("--s1", type=float)
+    p.add_argument("--rho0", type=float)
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
     args = p.parse_args()
     args.deck = os.path.abspath(args.deck)
