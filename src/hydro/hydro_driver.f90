@@ -4,8 +4,8 @@
 module hydro_driver
   use core_kinds, only: rk
   use mesh_local, only: mesh_t
-  use material_table, only: material_t, material_eos, STRENGTH_NONE
-  use material_strength, only: deviatoric_update, velocity_gradient
+  use material_table, only: material_t, material_eos, material_flow, STRENGTH_NONE
+  use material_strength, only: deviatoric_update, velocity_gradient, equivalent_strain_rate
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
       node_gather_forces, zone_time_step, zone_limited_viscosity
@@ -191,7 +191,7 @@ contains
     real(rk), intent(inout) :: to(:, :)
     logical, intent(in) :: accumulate
     integer :: m, i, z, k
-    real(rk) :: vz(3, 8), grad(3, 3), dp
+    real(rk) :: vz(3, 8), grad(3, 3), dp, shear, yield
     do m = 1, size(materials)
       if (materials(m)%strength == STRENGTH_NONE) cycle
       do i = mz%start(m), mz%start(m + 1) - 1
@@ -201,8 +201,10 @@ contains
           vz(:, k) = v(:, mesh%zone_node(k, z))
         end do
         call velocity_gradient(vz, state%zone_bmatrix(:, :, z), state%zone_volume(z), grad)
-        call deviatoric_update(from(:, z), grad, step, materials(m)%shear_modulus, &
-            materials(m)%yield_stress, to(:, z), dp)
+        call material_flow(materials(m), state%zone_pressure(z), state%zone_energy(z), &
+            state%zone_density(z), state%zone_plastic_strain(z), equivalent_strain_rate(grad), &
+            shear, yield)
+        call deviatoric_update(from(:, z), grad, step, shear, yield, to(:, z), dp)
         if (accumulate) state%zone_plastic_strain(z) = state%zone_plastic_strain(z) + dp
       end do
     end do

@@ -8,7 +8,8 @@ module io_deck
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
   use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library, &
-      STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC
+      STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC, STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK
+  use material_flow_stress, only: sg_set, jc_set, SG_SET_NAMES, JC_SET_NAMES
   use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE, &
       BC_WALL
@@ -566,9 +567,29 @@ contains
           ': shear_modulus: required (> 0) for strength = ''elastic_plastic'' (or give library)')
       if (.not. (mat%yield_stress > 0.0_rk)) call status%add(trim(where)// &
           ': yield_stress: required (> 0) for strength = ''elastic_plastic'' (or give library)')
+    case ('steinberg_guinan')
+      mat%strength = STRENGTH_STEINBERG_GUINAN
+      mat%sg = sg_set(to_lower(library))
+      if (.not. (mat%sg%g0 > 0.0_rk)) then
+        call status%add(trim(where)//': library: strength = ''steinberg_guinan'' takes its '// &
+            'data from library (valid: '//SG_SET_NAMES//')')
+      else
+        if (shear_modulus /= UNSET) mat%sg%g0 = shear_modulus
+        if (yield_stress /= UNSET) mat%sg%y0 = yield_stress
+        mat%shear_modulus = mat%sg%g0
+      end if
+    case ('johnson_cook')
+      mat%strength = STRENGTH_JOHNSON_COOK
+      mat%jc = jc_set(to_lower(library))
+      mat%shear_modulus = lib_shear
+      if (shear_modulus /= UNSET) mat%shear_modulus = shear_modulus
+      if (.not. (mat%jc%a > 0.0_rk)) call status%add(trim(where)//': library: strength = '// &
+          '''johnson_cook'' takes its data from library (valid: '//JC_SET_NAMES//')')
+      if (.not. (mat%shear_modulus > 0.0_rk)) call status%add(trim(where)// &
+          ': shear_modulus: required (> 0) for strength = ''johnson_cook''')
     case default
       call status%add(trim(where)//': strength: '''//trim(strength)//''' is not a strength '// &
-          'model (valid: none, elastic_plastic)')
+          'model (valid: none, elastic_plastic, steinberg_guinan, johnson_cook)')
     end select
   end subroutine read_material
 

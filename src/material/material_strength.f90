@@ -5,7 +5,7 @@ module material_strength
   use core_kinds, only: rk
   implicit none
   private
-  public :: deviatoric_update, velocity_gradient
+  public :: deviatoric_update, velocity_gradient, equivalent_strain_rate
 
 contains
 
@@ -41,6 +41,12 @@ contains
     real(rk), intent(out) :: s_new(6)
     real(rk), intent(out) :: dplastic
     real(rk) :: d(3, 3), w(3, 3), sm(3, 3), rate(3, 3), trace, sbar
+    ! A melted (or strengthless) zone carries no deviatoric stress.
+    if (.not. (shear > 0.0_rk) .or. .not. (yield > 0.0_rk)) then
+      s_new = 0.0_rk
+      dplastic = 0.0_rk
+      return
+    end if
     d = 0.5_rk * (grad + transpose(grad))
     w = 0.5_rk * (grad - transpose(grad))
     trace = (d(1, 1) + d(2, 2) + d(3, 3)) / 3.0_rk
@@ -63,5 +69,18 @@ contains
       dplastic = (sbar - yield) / (3.0_rk * shear)
     end if
   end subroutine deviatoric_update
+
+  !> Equivalent (von Mises) deviatoric strain rate sqrt(2/3 D':D').
+  pure function equivalent_strain_rate(grad) result(rate)
+    real(rk), intent(in) :: grad(3, 3)
+    real(rk) :: rate
+    real(rk) :: d(3, 3), trace
+    d = 0.5_rk * (grad + transpose(grad))
+    trace = (d(1, 1) + d(2, 2) + d(3, 3)) / 3.0_rk
+    d(1, 1) = d(1, 1) - trace
+    d(2, 2) = d(2, 2) - trace
+    d(3, 3) = d(3, 3) - trace
+    rate = sqrt(2.0_rk / 3.0_rk * sum(d * d))
+  end function equivalent_strain_rate
 
 end module material_strength

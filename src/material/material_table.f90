@@ -5,12 +5,15 @@ module material_table
   use eos_ideal_gas, only: ideal_gas_pressure, ideal_gas_sound_speed, ideal_gas_energy
   use eos_mie_gruneisen, only: mie_gruneisen_t, mg_pressure, mg_sound_speed, &
       mg_energy_from_pressure
+  use material_flow_stress, only: steinberg_guinan_t, johnson_cook_t, sg_shear_modulus, &
+      sg_yield, jc_yield, temperature_from_energy, SG_REFERENCE_TEMPERATURE
   implicit none
   private
-  public :: material_eos, material_energy_from_pressure, material_library
+  public :: material_eos, material_energy_from_pressure, material_library, material_flow
 
   integer, parameter, public :: EOS_IDEAL_GAS = 1, EOS_MIE_GRUNEISEN = 2
   integer, parameter, public :: STRENGTH_NONE = 0, STRENGTH_ELASTIC_PLASTIC = 1
+  integer, parameter, public :: STRENGTH_STEINBERG_GUINAN = 2, STRENGTH_JOHNSON_COOK = 3
   integer, parameter, public :: MATERIAL_NAME_LEN = 32
 
   !> One material.
@@ -23,6 +26,8 @@ module material_table
     integer :: strength = STRENGTH_NONE !< STRENGTH_* model
     real(rk) :: shear_modulus = 0.0_rk !< G
     real(rk) :: yield_stress = huge(1.0_rk) !< Y (huge = elastic)
+    type(steinberg_guinan_t) :: sg !< Steinberg-Guinan data
+    type(johnson_cook_t) :: jc !< Johnson-Cook data
   end type material_t
 
 contains
@@ -53,10 +58,47 @@ contains
       do i = 1, size(list)
         z = list(i)
         if (density(z) > 0.0_rk) sound_speed(z) = sqrt(sound_speed(z)**2 + &
-            4.0_rk * mat%shear_modulus / (3.0_rk * density(z)))
+            4.0_rk * shear_modulus(mat, pressure(z), energy(z), density(z)) &
+            / (3.0_rk * density(z)))
       end do
     end if
   end subroutine material_eos
+
+  !> Shear modulus of a zone: constant, or Steinberg-Guinan's G(p, T, rho).
+  elemental function shear_modulus(mat, p, e, rho) result(g)
+    type(material_t), intent(in) :: mat
+    real(rk), intent(in) :: p, e, rho
+    real(rk) :: g
+    if (mat%strength == STRENGTH_STEINBERG_GUINAN) then
+      g = sg_shear_modulus(mat%sg, p, temperature_from_energy(max(e, 0.0_rk), mat%sg%cv, &
+          SG_REFERENCE_TEMPERATURE), rho / mat%sg%rho0)
+    else
+      g = mat%shear_modulus
+    end if
+  end function shear_modulus
+
+  !> Shear modulus and yield stress of a zone of material mat at pressure p,
+  !> specific internal energy e (temperature T = T0 + e/cv, constant specific
+  !> heat), density rho, plastic strain eps_p and equivalent strain rate rate.
+  elemental subroutine material_flow(mat, p, e, rho, eps_p, rate, g, y)
+    type(material_t), intent(in) :: mat
+    real(rk), intent(in) :: p, e, rho, eps_p, rate
+    real(rk), intent(out) :: g, y
+    real(rk) :: temperature
+    select case (mat%strength)
+    case (STRENGTH_STEINBERG_GUINAN)
+      temperature = temperature_from_energy(max(e, 0.0_rk), mat%sg%cv, SG_REFERENCE_TEMPERATURE)
+      g = sg_shear_modulus(mat%sg, p, temperature, rho / mat%sg%rho0)
+      y = sg_yield(mat%sg, eps_p, p, temperature, rho / mat%sg%rho0)
+    case (STRENGTH_JOHNSON_COOK)
+      temperature = temperature_from_energy(max(e, 0.0_rk), mat%jc%cv, mat%jc%tr)
+      g = mat%shear_modulus
+      y = jc_yield(mat%jc, eps_p, rate, temperature)
+    case default
+      g = mat%shear_modulus
+      y = mat%yield_stress
+    end select
+  end subroutine material_flow
 
   !> Specific internal energy that gives pressure p at density rho.
   elemental function material_energy_from_pressure(mat, rho, p) result(e)
