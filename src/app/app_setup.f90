@@ -4,6 +4,7 @@ module app_setup
   use core_status, only: status_t
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box
+  use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant
   use mesh_local, only: mesh_t, mesh_build_local
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain
@@ -54,7 +55,18 @@ contains
     type(boundary_t), intent(inout) :: bc
     type(status_t), intent(inout) :: status
     integer(ik), allocatable :: part(:)
-    call mesh_make_box(config%box, global, status)
+    select case (config%mesh_type)
+    case ('rod')
+      call mesh_make_rod(config%rod, global, status)
+    case ('tube')
+      call mesh_make_tube(config%tube, global, status)
+    case ('shell')
+      call mesh_make_shell_octant(config%shell, global, status)
+    case ('gmsh')
+      call status%add('&mesh: type: ''gmsh'' import is not in this build yet')
+    case default
+      call mesh_make_box(config%box, global, status)
+    end select
     if (.not. status%ok()) return
     call assign_blocks(config, global, status)
     if (.not. status%ok()) return

@@ -7,6 +7,7 @@ module io_deck
   use core_status, only: status_t
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
+  use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t
   use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library, &
       STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC, STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK
   use material_flow_stress, only: sg_set, jc_set, SG_SET_NAMES, JC_SET_NAMES
@@ -59,6 +60,10 @@ module io_deck
     type(hydro_options_t) :: hydro
     character(len=16) :: mesh_type = 'box'
     type(box_spec_t) :: box
+    type(rod_spec_t) :: rod
+    type(tube_spec_t) :: tube
+    type(shell_spec_t) :: shell
+    character(len=PATH_LEN) :: mesh_file = ''
     type(material_t), allocatable :: materials(:)
     type(block_spec_t), allocatable :: blocks(:)
     type(region_t), allocatable :: regions(:)
@@ -83,7 +88,9 @@ contains
           'q_linear_limited', 'hourglass', 'hourglass_coefficient']
     case ('mesh')
       keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
-          'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb']
+          'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb', 'radius', 'length', 'z0', 'sector', &
+          'n_core', 'n_radial', 'n_axial', 'axial_ratio', 'core_fraction', 'ri', 'ro', 'n_theta', &
+          'axis', 'origin', 'n_patch', 'radial_ratio', 'file']
     case ('material')
       keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma', 'library', 'rho0', 'c0', 's1', &
           'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress']
@@ -388,14 +395,21 @@ contains
     character(len=LINE_LEN), intent(in) :: sect(:)
     type(config_t), intent(inout) :: config
     type(status_t), intent(inout) :: status
-    character(len=16) :: type
+    character(len=16) :: type, sector
     real(rk) :: x(MAX_INTERVALS + 1), y(MAX_INTERVALS + 1), z(MAX_INTERVALS + 1)
     real(rk) :: ratio_x(MAX_INTERVALS), ratio_y(MAX_INTERVALS), ratio_z(MAX_INTERVALS)
     integer :: nx(MAX_INTERVALS), ny(MAX_INTERVALS), nz(MAX_INTERVALS)
     real(rk) :: skew_amplitude, perturb
+    real(rk) :: radius, length, z0, axial_ratio, core_fraction, ri, ro, axis(3), origin(3)
+    real(rk) :: radial_ratio
+    integer :: n_core, n_radial, n_axial, n_theta, n_patch
+    character(len=PATH_LEN) :: file
     integer :: ios
     character(len=256) :: msg
-    namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude, perturb
+    logical :: box_keys, curved_keys
+    namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude, perturb, &
+        radius, length, z0, sector, n_core, n_radial, n_axial, axial_ratio, core_fraction, ri, ro, &
+        n_theta, axis, origin, n_patch, radial_ratio, file
 
     type = 'box'
     x = UNSET
@@ -409,21 +423,84 @@ contains
     ratio_z = 1.0_rk
     skew_amplitude = 0.0_rk
     perturb = 0.0_rk
+    radius = UNSET
+    length = UNSET
+    z0 = UNSET
+    sector = ''
+    n_core = -1
+    n_radial = -1
+    n_axial = -1
+    axial_ratio = UNSET
+    core_fraction = UNSET
+    ri = UNSET
+    ro = UNSET
+    n_theta = -1
+    axis = UNSET
+    origin = UNSET
+    n_patch = -1
+    radial_ratio = UNSET
+    file = ''
     read(sect, nml=mesh, iostat=ios, iomsg=msg)
     call nml_error('mesh', ios, msg, status)
     if (ios /= 0) return
     config%mesh_type = to_lower(type)
-    if (config%mesh_type /= 'box') then
-      call status%add('&mesh: type: '''//trim(type)//''' is not a mesh type (valid: box)')
-      return
-    end if
-    call direction('x', x, nx, ratio_x, 1)
-    call direction('y', y, ny, ratio_y, 2)
-    call direction('z', z, nz, ratio_z, 3)
-    config%box%skew_amplitude = skew_amplitude
-    if (perturb < 0.0_rk .or. perturb >= 0.5_rk) call status%add('&mesh: perturb: must be '// &
-        'in [0, 0.5) (fraction of the local zone size)')
-    config%box%perturb = perturb
+    box_keys = any(x /= UNSET) .or. any(nx /= 0) .or. skew_amplitude /= 0.0_rk .or. &
+        perturb /= 0.0_rk
+    curved_keys = radius /= UNSET .or. length /= UNSET .or. ri /= UNSET .or. ro /= UNSET .or. &
+        n_radial /= -1 .or. n_axial /= -1 .or. n_theta /= -1 .or. n_patch /= -1 .or. &
+        n_core /= -1
+    select case (config%mesh_type)
+    case ('box')
+      if (curved_keys) call status%add('&mesh: type: ''box'' takes x, y, z, nx, ny, nz, '// &
+          'ratio_*, skew_amplitude, perturb (radius, ri, ro, n_* belong to rod, tube, shell)')
+      call direction('x', x, nx, ratio_x, 1)
+      call direction('y', y, ny, ratio_y, 2)
+      call direction('z', z, nz, ratio_z, 3)
+      config%box%skew_amplitude = skew_amplitude
+      if (perturb < 0.0_rk .or. perturb >= 0.5_rk) call status%add('&mesh: perturb: must be '// &
+          'in [0, 0.5) (fraction of the local zone size)')
+      config%box%perturb = perturb
+    case ('rod')
+      if (box_keys) call status%add('&mesh: type: ''rod'' does not take box keys (x, nx, ...)')
+      if (radius /= UNSET) config%rod%radius = radius
+      if (length /= UNSET) config%rod%length = length
+      if (z0 /= UNSET) config%rod%z0 = z0
+      if (len_trim(sector) > 0) config%rod%sector = to_lower(sector)
+      if (n_core /= -1) config%rod%n_core = n_core
+      if (n_radial /= -1) config%rod%n_radial = n_radial
+      if (n_axial /= -1) config%rod%n_axial = n_axial
+      if (axial_ratio /= UNSET) config%rod%axial_ratio = axial_ratio
+      if (core_fraction /= UNSET) config%rod%core_fraction = core_fraction
+    case ('tube')
+      if (box_keys) call status%add('&mesh: type: ''tube'' does not take box keys (x, nx, ...)')
+      if (ri /= UNSET) config%tube%ri = ri
+      if (ro /= UNSET) config%tube%ro = ro
+      if (length /= UNSET) config%tube%length = length
+      if (len_trim(sector) > 0) config%tube%sector = to_lower(sector)
+      if (n_theta /= -1) config%tube%n_theta = n_theta
+      if (n_radial /= -1) config%tube%n_radial = n_radial
+      if (n_axial /= -1) config%tube%n_axial = n_axial
+      if (axial_ratio /= UNSET) config%tube%axial_ratio = axial_ratio
+      if (all(axis /= UNSET)) config%tube%axis = axis
+      if (all(origin /= UNSET)) config%tube%origin = origin
+    case ('shell')
+      if (box_keys) call status%add('&mesh: type: ''shell'' does not take box keys (x, nx, ...)')
+      if (ri /= UNSET) config%shell%ri = ri
+      if (ro /= UNSET) config%shell%ro = ro
+      if (n_patch /= -1) config%shell%n_patch = n_patch
+      if (n_radial /= -1) config%shell%n_radial = n_radial
+      if (radial_ratio /= UNSET) config%shell%radial_ratio = radial_ratio
+    case ('gmsh')
+      if (box_keys .or. curved_keys) call status%add('&mesh: type: ''gmsh'' takes only file')
+      if (len_trim(file) == 0) then
+        call status%add('&mesh: file: required for type = ''gmsh'' (a .msh file)')
+      else
+        config%mesh_file = file
+      end if
+    case default
+      call status%add('&mesh: type: '''//trim(type)//''' is not a mesh type (valid: box, '// &
+          'rod, tube, shell, gmsh)')
+    end select
 
   contains
 

@@ -399,12 +399,37 @@ def cmd_twowave(args):
           % (plastic_lab, expected, u_measured), abs(plastic_lab / expected - 1) <= 0.03)
 
 
+def cmd_shell_stop(args):
+    """Imploding shell: the inner surface (nodes at radius --origin at t = 0)
+    stops at --target within --tol (absolute); the stopping radius is the
+    smallest mean radius over the dumps."""
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "shell")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    files = sorted(glob.glob(os.path.join(wd, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
+    d0 = dump.load(files[0])
+    inner = np.abs(np.linalg.norm(d0["coordinates"], axis=1) - args.origin) < 1e-9 * args.origin
+    history = []
+    for path in files:
+        d = dump.load(path)
+        history.append((float(d["attrs"]["time"]),
+                        float(np.linalg.norm(d["coordinates"], axis=1)[inner].mean())))
+    t_stop, r_stop = min(history, key=lambda h: h[1])
+    print("  inner radius history: " + ", ".join("%.0f:%.3f" % h for h in history))
+    check("inner surface stops at r = %.4f (t = %.1f) vs %.2f within %.2f"
+          % (r_stop, t_stop, args.target, args.tol), abs(r_stop - args.target) <= args.tol)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
                                         "convergence", "window", "interface", "stability",
-                                        "wavefront", "rebound", "twowave"])
+                                        "wavefront", "rebound", "twowave", "shell_stop"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
