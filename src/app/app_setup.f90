@@ -3,7 +3,8 @@ module app_setup
   use core_kinds, only: rk, ik
   use core_status, only: status_t
   use mesh_geometry, only: hex_centroid
-  use mesh_global, only: global_mesh_t, mesh_make_box
+  use mesh_global, only: global_mesh_t, mesh_make_box, NAME_LEN
+  use mesh_gmsh, only: mesh_read_gmsh
   use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant
   use mesh_local, only: mesh_t, mesh_build_local
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS
@@ -47,6 +48,33 @@ contains
     end if
   end subroutine assign_blocks
 
+  !> Imported meshes: the 3D physical group of each zone names its &block.
+  subroutine assign_blocks_by_name(config, group_names, global, status)
+    type(config_t), intent(in) :: config
+    character(len=*), intent(in) :: group_names(:)
+    type(global_mesh_t), intent(inout) :: global
+    type(status_t), intent(inout) :: status
+    integer, allocatable :: map(:)
+    integer :: g, b, z
+    allocate(map(size(group_names)))
+    map = 0
+    do g = 1, size(group_names)
+      do b = 1, size(config%blocks)
+        if (config%blocks(b)%name == group_names(g)) map(g) = b
+      end do
+      if (map(g) == 0 .and. any(global%zone_block == g)) call status%add('&block: name: the '// &
+          'mesh''s physical volume '''//trim(group_names(g))//''' has no &block of that name')
+    end do
+    do b = 1, size(config%blocks)
+      if (.not. any(group_names == config%blocks(b)%name)) call status%add('&block: name: '''// &
+          trim(config%blocks(b)%name)//''' is not a physical volume of the mesh file')
+    end do
+    if (.not. status%ok()) return
+    do z = 1, global%nzone
+      global%zone_block(z) = map(global%zone_block(z))
+    end do
+  end subroutine assign_blocks_by_name
+
   !> Build the global mesh, check blocks and boundaries, partition, localise.
   subroutine setup_mesh(config, global, mesh, bc, status)
     type(config_t), intent(in) :: config
@@ -55,6 +83,7 @@ contains
     type(boundary_t), intent(inout) :: bc
     type(status_t), intent(inout) :: status
     integer(ik), allocatable :: part(:)
+    character(len=NAME_LEN), allocatable :: group_names(:)
     select case (config%mesh_type)
     case ('rod')
       call mesh_make_rod(config%rod, global, status)
@@ -63,12 +92,16 @@ contains
     case ('shell')
       call mesh_make_shell_octant(config%shell, global, status)
     case ('gmsh')
-      call status%add('&mesh: type: ''gmsh'' import is not in this build yet')
+      call mesh_read_gmsh(trim(config%mesh_file), global, group_names, status)
     case default
       call mesh_make_box(config%box, global, status)
     end select
     if (.not. status%ok()) return
-    call assign_blocks(config, global, status)
+    if (config%mesh_type == 'gmsh') then
+      call assign_blocks_by_name(config, group_names, global, status)
+    else
+      call assign_blocks(config, global, status)
+    end if
     if (.not. status%ok()) return
     allocate(part(global%nzone))
     call partition_zones(global%nnode, global%connectivity, par_size(), part)

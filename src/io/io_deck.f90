@@ -406,7 +406,7 @@ contains
     character(len=PATH_LEN) :: file
     integer :: ios
     character(len=256) :: msg
-    logical :: box_keys, curved_keys
+    logical :: box_keys, curved_keys, exists
     namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude, perturb, &
         radius, length, z0, sector, n_core, n_radial, n_axial, axial_ratio, core_fraction, ri, ro, &
         n_theta, axis, origin, n_patch, radial_ratio, file
@@ -496,6 +496,9 @@ contains
         call status%add('&mesh: file: required for type = ''gmsh'' (a .msh file)')
       else
         config%mesh_file = file
+        if (par_rank() == 0) inquire(file=trim(file), exist=exists)
+        call par_bcast(exists)
+        if (.not. exists) call status%add('&mesh: file: '''//trim(file)//''' does not exist')
       end if
     case default
       call status%add('&mesh: type: '''//trim(type)//''' is not a mesh type (valid: box, '// &
