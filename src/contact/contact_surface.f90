@@ -1,0 +1,248 @@
+!> Contact surfaces: the quadrilateral segments of one or more face sets of the
+!> global mesh, their nodes, node -> segment adjacency, neighbours across edges
+!> and a convex/concave flag per edge.
+!>
+!> Segments keep the outward node order of mesh_geometry's HEX_FACE_NODES
+!> (counter-clockwise about the outward normal). Edge k of a segment runs from
+!> its corner k to corner mod(k, 4) + 1. Node positions are not stored: they are
+!> passed as x(3, nnode) of the mesh, so a surface is built once and reused
+!> every cycle (only surface_update_edges depends on positions).
+!>
+!> Convexity. For edge k of segment s (direction e, from corner k to k+1) with
+!> neighbour t across it, the edge is convex when (n_s x n_t) . e > 0, n_s and
+!> n_t the unit outward normals of the two segments (on a box, a top face and a
+!> side face meet at a convex edge). The expression is exactly antisymmetric
+!> in (s, t) and e, so both sides of an edge agree bitwise. Edges that are flat
+!> to within CONVEX_TOLERANCE, and concave edges, are not convex; free edges
+!> (no neighbour) count as convex. Where more than two segments share an edge,
+!> the neighbour is the lowest-numbered other one.
+module contact_surface
+  use core_kinds, only: rk, ik, i8
+  use core_status, only: status_t
+  use mesh_geometry, only: HEX_FACE_NODES
+  use mesh_global, only: global_mesh_t
+  use contact_geometry, only: quad_unit_normal
+  implicit none
+  private
+  public :: surface_build, surface_from_segments, surface_update_edges
+  public :: surface_node_index, edge_end
+
+  !> An edge is convex when sin(angle between the segment normals) exceeds this.
+  real(rk), parameter, public :: CONVEX_TOLERANCE = 1.0e-8_rk
+
+  !> Segments of a contact surface with their adjacency.
+  type, public :: contact_surface_t
+    integer :: nseg = 0 !< number of segments
+    integer(ik), allocatable :: segments(:, :) !< (4, nseg) global node ids, outward order
+    !> (nseg) global face id (zone - 1) * 6 + face, fixed under relabelling
+    integer(i8), allocatable :: segment_id(:)
+    integer :: nnode = 0 !< number of surface nodes
+    integer(ik), allocatable :: nodes(:) !< (nnode) sorted global node ids
+    integer, allocatable :: node_start(:) !< (nnode + 1) CSR into node_segments
+    integer, allocatable :: node_segments(:) !< segments of each node, ascending
+    integer, allocatable :: neighbours(:, :) !< (4, nseg) segment across edge k, 0 if free
+    logical, allocatable :: edge_convex(:, :) !< (4, nseg) edge k is convex (or free)
+  contains
+    procedure :: free => contact_surface_free
+  end type contact_surface_t
+
+contains
+
+  !> Release everything.
+  subroutine contact_surface_free(this)
+    class(contact_surface_t), intent(inout) :: this
+    if (allocated(this%segments)) deallocate(this%segments)
+    if (allocated(this%segment_id)) deallocate(this%segment_id)
+    if (allocated(this%nodes)) deallocate(this%nodes)
+    if (allocated(this%node_start)) deallocate(this%node_start)
+    if (allocated(this%node_segments)) deallocate(this%node_segments)
+    if (allocated(this%neighbours)) deallocate(this%neighbours)
+    if (allocated(this%edge_convex)) deallocate(this%edge_convex)
+    this%nseg = 0
+    this%nnode = 0
+  end subroutine contact_surface_free
+
+  !> Local index of corner k's successor along the segment boundary.
+  elemental integer function edge_end(k)
+    integer, intent(in) :: k !< corner / edge index 1..4
+    edge_end = mod(k, 4) + 1
+  end function edge_end
+
+  !> Build a surface from named face sets of the mesh (in the order given);
+  !> convexity uses the mesh coordinates. Unknown names are reported in status.
+  subroutine surface_build(mesh, set_names, surf, status)
+    type(global_mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: set_names(:) !< face sets forming the surface
+    type(contact_surface_t), intent(inout) :: surf
+    type(status_t), intent(inout) :: status
+    integer(ik), allocatable :: segments(:, :)
+    integer(i8), allocatable :: ids(:)
+    integer :: i, k, f, count_face, zone, face, nbad
+
+    call surf%free()
+    nbad = 0
+    count_face = 0
+    do i = 1, size(set_names)
+      k = mesh%find_set(set_names(i))
+      if (k == 0) then
+        call status%add("contact surface: no face set '" // trim(set_names(i)) // &
+            "' in the mesh; valid sets: " // set_list())
+        nbad = nbad + 1
+      else
+        count_face = count_face + mesh%set_start(k + 1) - mesh%set_start(k)
+      end if
+    end do
+    if (nbad > 0) return
+    allocate(segments(4, count_face), ids(count_face))
+    count_face = 0
+    do i = 1, size(set_names)
+      k = mesh%find_set(set_names(i))
+      do f = mesh%set_start(k), mesh%set_start(k + 1) - 1
+        count_face = count_face + 1
+        zone = mesh%set_zone(f)
+        face = mesh%set_face(f)
+        segments(:, count_face) = mesh%connectivity(HEX_FACE_NODES(:, face), zone)
+        ids(count_face) = int(zone - 1, i8) * 6_i8 + int(face, i8)
+      end do
+    end do
+    call surface_from_segments(segments, ids, mesh%coordinates, surf)
+
+  contains
+
+    function set_list() result(text)
+      character(len=:), allocatable :: text
+      integer :: j
+      text = ''
+      do j = 1, mesh%nset
+        if (j > 1) text = text // ', '
+        text = text // trim(mesh%set_name(j))
+      end do
+    end function set_list
+
+  end subroutine surface_build
+
+  !> Build a surface from an explicit segment list (outward node order).
+  subroutine surface_from_segments(segments, segment_id, x, surf)
+    integer(ik), intent(in) :: segments(:, :) !< (4, nseg) global node ids
+    integer(i8), intent(in) :: segment_id(:) !< (nseg) global ids, for tie-breaking
+    real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
+    type(contact_surface_t), intent(inout) :: surf
+    integer, allocatable :: local(:), fill(:)
+    integer :: nseg, s, k, n, max_id
+
+    call surf%free()
+    nseg = size(segments, 2)
+    surf%nseg = nseg
+    allocate(surf%segments(4, nseg), surf%segment_id(nseg))
+    surf%segments = segments
+    surf%segment_id = segment_id
+    max_id = 0
+    if (nseg > 0) max_id = maxval(segments)
+    ! Surface nodes: mark, then number in ascending global id.
+    allocate(local(max_id))
+    local = 0
+    do s = 1, nseg
+      local(segments(:, s)) = 1
+    end do
+    surf%nnode = count(local == 1)
+    allocate(surf%nodes(surf%nnode))
+    n = 0
+    do k = 1, max_id
+      if (local(k) == 1) then
+        n = n + 1
+        surf%nodes(n) = int(k, ik)
+        local(k) = n
+      end if
+    end do
+    ! Node -> segment CSR; segments are visited in order, so each list ascends.
+    allocate(surf%node_start(surf%nnode + 1), fill(surf%nnode))
+    fill = 0
+    do s = 1, nseg
+      do k = 1, 4
+        fill(local(segments(k, s))) = fill(local(segments(k, s))) + 1
+      end do
+    end do
+    surf%node_start(1) = 1
+    do n = 1, surf%nnode
+      surf%node_start(n + 1) = surf%node_start(n) + fill(n)
+    end do
+    allocate(surf%node_segments(surf%node_start(surf%nnode + 1) - 1))
+    fill = 0
+    do s = 1, nseg
+      do k = 1, 4
+        n = local(segments(k, s))
+        surf%node_segments(surf%node_start(n) + fill(n)) = s
+        fill(n) = fill(n) + 1
+      end do
+    end do
+    ! Neighbours: the other segment holding both ends of edge k.
+    allocate(surf%neighbours(4, nseg), surf%edge_convex(4, nseg))
+    do s = 1, nseg
+      do k = 1, 4
+        surf%neighbours(k, s) = find_neighbour(s, segments(k, s), segments(edge_end(k), s))
+      end do
+    end do
+    call surface_update_edges(surf, x)
+
+  contains
+
+    integer function find_neighbour(self, a, b) result(t)
+      integer, intent(in) :: self
+      integer(ik), intent(in) :: a, b
+      integer :: i, na
+      na = local(a)
+      do i = surf%node_start(na), surf%node_start(na + 1) - 1
+        t = surf%node_segments(i)
+        if (t /= self .and. any(segments(:, t) == b)) return
+      end do
+      t = 0
+    end function find_neighbour
+
+  end subroutine surface_from_segments
+
+  !> Recompute the convex flag of every edge from the current positions.
+  subroutine surface_update_edges(surf, x)
+    type(contact_surface_t), intent(inout) :: surf
+    real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
+    real(rk) :: normal_s(3), normal_t(3), edge(3), turn(3)
+    integer :: s, t, k
+
+    do s = 1, surf%nseg
+      normal_s = quad_unit_normal(x(:, surf%segments(:, s)))
+      do k = 1, 4
+        t = surf%neighbours(k, s)
+        if (t == 0) then
+          surf%edge_convex(k, s) = .true.
+          cycle
+        end if
+        normal_t = quad_unit_normal(x(:, surf%segments(:, t)))
+        edge = x(:, surf%segments(edge_end(k), s)) - x(:, surf%segments(k, s))
+        turn = [normal_s(2) * normal_t(3) - normal_s(3) * normal_t(2), &
+            normal_s(3) * normal_t(1) - normal_s(1) * normal_t(3), &
+            normal_s(1) * normal_t(2) - normal_s(2) * normal_t(1)]
+        surf%edge_convex(k, s) = dot_product(turn, edge) > CONVEX_TOLERANCE * norm2(edge)
+      end do
+    end do
+  end subroutine surface_update_edges
+
+  !> Index of global node id in surf%nodes (binary search), 0 if absent.
+  pure integer function surface_node_index(surf, id) result(i)
+    type(contact_surface_t), intent(in) :: surf
+    integer, intent(in) :: id !< global node id
+    integer :: lo, hi
+    lo = 1
+    hi = surf%nnode
+    do while (lo <= hi)
+      i = (lo + hi) / 2
+      if (surf%nodes(i) == id) then
+        return
+      else if (surf%nodes(i) < id) then
+        lo = i + 1
+      else
+        hi = i - 1
+      end if
+    end do
+    i = 0
+  end function surface_node_index
+
+end module contact_surface
