@@ -483,7 +483,8 @@ contains
       return
     end if
     call dump_series_update(trim(config%output%directory)//'/'//trim(config%output%prefix), &
-        trim(path), config%title, state%cycle, state%time, mesh%nnode_global, mesh%nzone_global)
+        trim(path), config%title, state%cycle, state%time, mesh%nnode_global, mesh%nzone_global, &
+        allocated(state%zone_stress))
     if (par_rank() == 0) write(output_unit, '(a)') '  dump '//trim(path)
   end subroutine write_dump
 

@@ -150,7 +150,7 @@ contains
     if (e /= 0 .and. ierr == 0) ierr = e
     if (.not. agreed()) return
     if (par_rank() == 0) call write_sidecar(path, title, mesh%nnode_global, mesh%nzone_global, &
-        state%time, allocated(state%zone_hourglass))
+        state%time, allocated(state%zone_stress))
 
   contains
 
@@ -180,11 +180,11 @@ contains
   end subroutine dump_write
 
   !> XDMF sidecar for one dump, so that ParaView and VisIt open it directly.
-  subroutine write_sidecar(path, title, nnode, nzone, time, stiffness)
+  subroutine write_sidecar(path, title, nnode, nzone, time, strength)
     character(len=*), intent(in) :: path, title
     integer(i8), intent(in) :: nnode, nzone
     real(rk), intent(in) :: time
-    logical, intent(in) :: stiffness
+    logical, intent(in) :: strength !< the dump has deviatoric stress and plastic strain
     integer :: unit
     character(len=:), allocatable :: base
     base = basename(path)
@@ -192,19 +192,19 @@ contains
     write(unit, '(a)') '<?xml version="1.0" ?>'
     write(unit, '(a)') '<Xdmf Version="3.0">'
     write(unit, '(a)') ' <Domain>'
-    call write_grid(unit, base, title, nnode, nzone, time)
+    call write_grid(unit, base, title, nnode, nzone, time, strength)
     write(unit, '(a)') ' </Domain>'
     write(unit, '(a)') '</Xdmf>'
     close(unit)
-    if (stiffness) continue
   end subroutine write_sidecar
 
   !> One <Grid> element describing a dump file (path relative to the .xmf).
-  subroutine write_grid(unit, h5file, title, nnode, nzone, time)
+  subroutine write_grid(unit, h5file, title, nnode, nzone, time, strength)
     integer, intent(in) :: unit
     character(len=*), intent(in) :: h5file, title
     integer(i8), intent(in) :: nnode, nzone
     real(rk), intent(in) :: time
+    logical, intent(in) :: strength
     character(len=32) :: nn, nz, ts
     integer :: i
     character(len=*), parameter :: zone_fields(7) = [character(len=24) :: 'density', &
@@ -237,6 +237,18 @@ contains
           'Precision="8" Format="HDF">'//h5file//':/zones/'//trim(zone_fields(i))//'</DataItem>'
       write(unit, '(a)') '   </Attribute>'
     end do
+    if (strength) then
+      write(unit, '(a)') '   <Attribute Name="plastic_strain" AttributeType="Scalar" Center="Cell">'
+      write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//'" NumberType="Float" '// &
+          'Precision="8" Format="HDF">'//h5file//':/zones/plastic_strain</DataItem>'
+      write(unit, '(a)') '   </Attribute>'
+      ! Components xx, yy, zz, xy, yz, zx (not XDMF's Tensor6 order): a 6-vector.
+      write(unit, '(a)') '   <Attribute Name="deviatoric_stress" AttributeType="Matrix" '// &
+          'Center="Cell">'
+      write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//' 6" NumberType="Float" '// &
+          'Precision="8" Format="HDF">'//h5file//':/zones/deviatoric_stress</DataItem>'
+      write(unit, '(a)') '   </Attribute>'
+    end if
     write(unit, '(a)') '  </Grid>'
   end subroutine write_grid
 
@@ -281,12 +293,14 @@ contains
 
   !> Rank 0: add a dump to the index file series_path.dumps (dropping entries at
   !> or after its cycle, as after a restart) and rewrite the time-series XDMF.
-  subroutine dump_series_update(series_path, dump_path, title, cycle, time, nnode, nzone)
+  subroutine dump_series_update(series_path, dump_path, title, cycle, time, nnode, nzone, &
+      strength)
     character(len=*), intent(in) :: series_path !< without extension
     character(len=*), intent(in) :: dump_path, title
     integer(i8), intent(in) :: cycle
     real(rk), intent(in) :: time
     integer(i8), intent(in) :: nnode, nzone
+    logical, intent(in) :: strength
     integer :: unit, ios, n, i
     integer(i8), allocatable :: cycles(:)
     real(rk), allocatable :: times(:)
@@ -339,7 +353,7 @@ contains
     write(unit, '(a)') ' <Domain>'
     write(unit, '(a)') ' <Grid Name="series" GridType="Collection" CollectionType="Temporal">'
     do i = 1, n
-      call write_grid(unit, trim(files(i)), title, nnode, nzone, times(i))
+      call write_grid(unit, trim(files(i)), title, nnode, nzone, times(i), strength)
     end do
     write(unit, '(a)') ' </Grid>'
     write(unit, '(a)') ' </Domain>'
