@@ -422,6 +422,14 @@ def cmd_shell_stop(args):
     print("  inner radius history: " + ", ".join("%.0f:%.3f" % h for h in history))
     check("inner surface stops at r = %.4f (t = %.1f) vs %.2f within %.2f"
           % (r_stop, t_stop, args.target, args.tol), abs(r_stop - args.target) <= args.tol)
+    import exact_verney
+    a_stop, t_end, a, t = exact_verney.verney()
+    times = np.array([h[0] for h in history])
+    radii = np.array([h[1] for h in history])
+    exact = exact_verney.radius_at(times, a, t, a_stop, t_end)
+    worst = float(np.max(np.abs(radii / exact - 1.0)))
+    check("inner radius history within 2%% of the rigid-plastic energy balance (worst %.2f%%)"
+          % (100 * worst), worst <= 0.02)
 
 
 def main():
