@@ -137,10 +137,10 @@ def cpu_sample():
     return time.monotonic(), busy, usage.ru_utime + usage.ru_stime
 
 
-WAIT = {"budget": 150.0, "waited": 0.0}
+WAIT = {"budget": 480.0, "waited": 0.0}
 
 
-def wait_for_quiet(limit=120.0):
+def wait_for_quiet(limit=180.0):
     """Wait (at most limit s, and within the global budget) until other
     processes use less than DISTURBED cores over a 2 s window."""
     start = time.monotonic()

@@ -107,7 +107,29 @@ contains
     call partition_zones(global%nnode, global%connectivity, par_size(), part)
     call mesh_build_local(global, part, mesh)
     call boundary_setup(config%boundaries, global, mesh, bc, status)
+    call check_contacts(config, global, status)
   end subroutine setup_mesh
+
+  !> &contact pairs: their surfaces must be face sets of the mesh; contact
+  !> enforcement (DAM, DLM) is not in this build, so a deck asking for it stops
+  !> here instead of running without it.
+  subroutine check_contacts(config, global, status)
+    type(config_t), intent(in) :: config
+    type(global_mesh_t), intent(in) :: global
+    type(status_t), intent(inout) :: status
+    integer :: k
+    character(len=16) :: where
+    do k = 1, size(config%contacts)
+      write(where, '(a,i0,a)') '&contact(', k, ')'
+      if (global%find_set(config%contacts(k)%surface_a) == 0) call status%add(trim(where)// &
+          ': surface_a: '''//trim(config%contacts(k)%surface_a)//''' is not a face set of the mesh')
+      if (global%find_set(config%contacts(k)%surface_b) == 0) call status%add(trim(where)// &
+          ': surface_b: '''//trim(config%contacts(k)%surface_b)//''' is not a face set of the mesh')
+    end do
+    if (size(config%contacts) > 0 .and. status%ok()) call status%add('&contact: method: '// &
+        'contact enforcement (DAM, DLM) is not implemented in this build yet; the deck is '// &
+        'valid but cannot be run')
+  end subroutine check_contacts
 
   !> Allocate the state and apply the initial conditions (positions from the
   !> global mesh); nodal masses are the sums of corner masses m_z / 8.

@@ -22,9 +22,9 @@ module io_deck
 
   integer, parameter, public :: DECK_FORMAT_VERSION = 1
   integer, parameter, public :: PATH_LEN = 256
-  integer, parameter :: NGROUP_KNOWN = 8
+  integer, parameter :: NGROUP_KNOWN = 9
   character(len=*), parameter :: GROUP_NAMES(NGROUP_KNOWN) = [character(len=8) :: &
-      'control', 'hydro', 'mesh', 'material', 'block', 'region', 'boundary', 'output']
+      'control', 'hydro', 'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact']
 
   !> A block: zones whose centroid lies in box, made of one material.
   type, public :: block_spec_t
@@ -43,6 +43,19 @@ module io_deck
     integer :: status_every = 10 !< cycles between status lines
     integer :: history_every = 1 !< cycles between history lines
   end type output_options_t
+
+  !> One &contact group: a pair of surfaces (or one with itself) and its method.
+  type, public :: contact_spec_t
+    character(len=NAME_LEN) :: name = ''
+    character(len=NAME_LEN) :: surface_a = '' !< face set
+    character(len=NAME_LEN) :: surface_b = '' !< face set ('' or = surface_a: self-contact)
+    character(len=8) :: method = '' !< 'dam' or 'dlm'
+    character(len=1) :: master = 'b' !< DAM master side
+    real(rk) :: capture = 0.0_rk !< capture tolerance (largest open gap treated as contact)
+    real(rk) :: penetration_warning = huge(1.0_rk) !< warn above this penetration
+    real(rk) :: search_margin = 0.0_rk !< territory margin (0 = automatic)
+    integer :: search_every = 0 !< cycles between global searches (0 = automatic)
+  end type contact_spec_t
 
   !> A group's text as read (unknown keys blanked).
   type :: section_t
@@ -68,6 +81,7 @@ module io_deck
     type(block_spec_t), allocatable :: blocks(:)
     type(region_t), allocatable :: regions(:)
     type(boundary_spec_t), allocatable :: boundaries(:)
+    type(contact_spec_t), allocatable :: contacts(:)
     type(output_options_t) :: output
     logical :: materials_read = .true. !< false when a &material could not be read
   end type config_t
@@ -105,6 +119,9 @@ contains
     case ('output')
       keys = [character(len=KEY_LEN) :: 'directory', 'prefix', 'dump_interval', &
           'dump_cycles', 'status_every', 'history_every']
+    case ('contact')
+      keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
+          'capture', 'penetration_warning', 'search_margin', 'search_every']
     case default
       allocate(keys(0))
     end select
@@ -168,7 +185,7 @@ contains
     ! of the deck is reported in this one run.
 
     allocate(config%materials(counts(4)), config%blocks(counts(5)), config%regions(counts(6)))
-    allocate(config%boundaries(counts(7)))
+    allocate(config%boundaries(counts(7)), config%contacts(counts(9)))
     counts = 0
     allocate(sections(ngroup))
     do ig = 1, ngroup
@@ -207,6 +224,9 @@ contains
         case ('boundary')
           counts(7) = counts(7) + 1
           call read_boundary(sect, counts(7), config%boundaries(counts(7)), status)
+        case ('contact')
+          counts(9) = counts(9) + 1
+          call read_contact(sect, counts(9), config%contacts(counts(9)), status)
         end select
       end associate
     end do
@@ -850,6 +870,73 @@ contains
     if (bc%kind /= BC_PRESSURE .and. pressure /= UNSET) call status%add(trim(where)// &
         ': pressure: only for type = ''pressure''')
   end subroutine read_boundary
+
+  subroutine read_contact(sect, index, pair, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    integer, intent(in) :: index
+    type(contact_spec_t), intent(inout) :: pair
+    type(status_t), intent(inout) :: status
+    character(len=NAME_LEN) :: name, surface_a, surface_b, master
+    character(len=16) :: method
+    real(rk) :: capture, penetration_warning, search_margin
+    integer :: search_every, ios
+    character(len=256) :: msg
+    character(len=16) :: where
+    namelist /contact/ name, surface_a, surface_b, method, master, capture, &
+        penetration_warning, search_margin, search_every
+
+    write(where, '(a,i0,a)') '&contact(', index, ')'
+    name = ''
+    surface_a = ''
+    surface_b = ''
+    method = ''
+    master = ''
+    capture = pair%capture
+    penetration_warning = pair%penetration_warning
+    search_margin = pair%search_margin
+    search_every = pair%search_every
+    read(sect, nml=contact, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call status%add(trim(where)//': cannot read the group: '//trim(msg))
+      return
+    end if
+    pair%name = name
+    if (len_trim(surface_a) == 0) call status%add(trim(where)//': surface_a: required '// &
+        '(a face set)')
+    pair%surface_a = surface_a
+    pair%surface_b = surface_b
+    if (len_trim(surface_b) == 0) pair%surface_b = surface_a
+    select case (to_lower(method))
+    case ('dam', 'dlm')
+      pair%method = to_lower(method)
+    case ('')
+      call status%add(trim(where)//': method: required (valid: dam, dlm)')
+    case default
+      call status%add(trim(where)//': method: '''//trim(method)//''' is not a contact '// &
+          'method (valid: dam, dlm)')
+    end select
+    select case (to_lower(master))
+    case ('')
+      pair%master = 'b'
+    case ('a', 'b')
+      pair%master = to_lower(master)
+      if (to_lower(method) == 'dlm') call status%add(trim(where)//': master: DLM is '// &
+          'symmetric and has no master side')
+    case default
+      call status%add(trim(where)//': master: must be ''a'' or ''b'' (the master side for DAM)')
+    end select
+    if (.not. (capture >= 0.0_rk)) call status%add(trim(where)//': capture: must be >= 0')
+    if (.not. (penetration_warning > 0.0_rk)) call status%add(trim(where)// &
+        ': penetration_warning: must be > 0')
+    if (.not. (search_margin >= 0.0_rk)) call status%add(trim(where)// &
+        ': search_margin: must be >= 0 (0 = automatic)')
+    if (search_every < 0) call status%add(trim(where)//': search_every: must be >= 0 '// &
+        '(0 = automatic)')
+    pair%capture = capture
+    pair%penetration_warning = penetration_warning
+    pair%search_margin = search_margin
+    pair%search_every = search_every
+  end subroutine read_contact
 
   subroutine read_output(sect, out, status)
     character(len=LINE_LEN), intent(in) :: sect(:)

@@ -149,6 +149,15 @@ def build_cases():
                   sub("name = 'gas', eos = 'ideal_gas', gamma = 1.4",
                       "name = 'gas', eos = 'mie_gruneisen', library = 'unobtainium'"),
                   ["&material(1): library: 'unobtainium' is not a built-in material"]))
+    c.append(Case("contact_bad_method_and_set",
+                  append("&contact surface_a = 'xmax', surface_b = 'xlow', method = 'glue' /\n"),
+                  ["&contact(1): method: 'glue' is not a contact method (valid: dam, dlm)"]))
+    c.append(Case("contact_unknown_surface",
+                  append("&contact surface_a = 'xmax', surface_b = 'xlow', method = 'dlm' /\n"),
+                  ["&contact(1): surface_b: 'xlow' is not a face set of the mesh"]))
+    c.append(Case("contact_not_yet_runnable",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam' /\n"),
+                  ["&contact: method: contact enforcement (DAM, DLM) is not implemented"]))
     c.append(Case("unknown_key_other_group",
                   sub("name = 'gas', eos", "name = 'gas', gama = 1.4, eos"),
                   ["&material: gama: unknown key", "valid keys: name, eos, gamma"]))
