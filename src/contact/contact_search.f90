@@ -45,7 +45,7 @@ module contact_search
   implicit none
   private
   public :: segment_territory, bucket_search, closest_point, contact_kind, primary_pairs
-  public :: pair_excluded
+  public :: pair_excluded, search_interval, largest_relative_speed
 
   !> No contact.
   integer, parameter, public :: KIND_NONE = 0
@@ -628,5 +628,56 @@ contains
       width = 2 * width
     end do
   end subroutine sort_by_key
+
+  !> Largest relative speed between any two nodes of the surfaces: twice the
+  !> largest speed (a bound that needs no pairing, O(N)).
+  pure function largest_relative_speed(v, nodes) result(speed)
+    real(rk), intent(in) :: v(:, :) !< (3, nnode) node velocities
+    integer(ik), intent(in) :: nodes(:) !< the surface nodes (global ids into v)
+    real(rk) :: speed
+    integer :: i
+    speed = 0.0_rk
+    do i = 1, size(nodes)
+      speed = max(speed, norm2(v(:, nodes(i))))
+    end do
+    speed = 2.0_rk * speed
+  end function largest_relative_speed
+
+  !> Cycles between global searches such that no contact is missed: a node and
+  !> a segment close at most at the relative speed `speed`; with a factor 2 of
+  !> safety for acceleration and dt growing by dt_growth per cycle, k is the
+  !> largest number of steps whose accumulated closing distance stays within
+  !> the margin left after the capture tolerance, so every pair that can touch
+  !> before the next search is already a test pair. k >= 1 (1 when the margin
+  !> is used up), at most max_interval (also when nothing moves).
+  pure function search_interval(margin, capture, speed, dt, dt_growth, max_interval) result(k)
+    real(rk), intent(in) :: margin !< territory margin of the last search
+    real(rk), intent(in) :: capture !< capture tolerance (part of the margin)
+    real(rk), intent(in) :: speed !< largest relative closing speed
+    real(rk), intent(in) :: dt !< current step
+    real(rk), intent(in) :: dt_growth !< largest growth of dt per cycle (>= 1)
+    integer, intent(in) :: max_interval
+    integer :: k
+    real(rk) :: room, travelled, step
+    room = margin - capture
+    if (room <= 0.0_rk) then
+      k = 1
+      return
+    end if
+    if (speed <= 0.0_rk) then
+      k = max_interval
+      return
+    end if
+    k = 0
+    travelled = 0.0_rk
+    step = dt
+    do while (k < max_interval)
+      step = step * dt_growth
+      travelled = travelled + 2.0_rk * speed * step
+      if (travelled > room) exit
+      k = k + 1
+    end do
+    k = max(1, k)
+  end function search_interval
 
 end module contact_search
