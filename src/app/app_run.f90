@@ -27,7 +27,8 @@ module app_run
 
   integer, parameter, public :: EXIT_OK = 0, EXIT_INPUT = 1, EXIT_FAILURE = 2, EXIT_INCOMPLETE = 3
   integer, parameter :: FAIL_NONE = 0, FAIL_VOLUME = 1, FAIL_NAN = 2, FAIL_DT = 3
-  integer, parameter :: NRECORD = 11
+  integer, parameter :: NRECORD = 12
+  integer, parameter :: STOP_NONE = 0, STOP_FILE = 1, STOP_WALL = 2
 
   !> What the end-of-cycle reduction found.
   type :: control_t
@@ -38,6 +39,7 @@ module app_run
     integer :: fail = FAIL_NONE
     real(rk) :: fail_zone = 0.0_rk !< global id (zone or node)
     real(rk) :: fail_position(3) = 0.0_rk
+    integer :: stop = STOP_NONE !< a clean stop requested (STOP file or wall-time limit)
   end type control_t
 
 contains
@@ -147,13 +149,14 @@ contains
 
   !> Local checks, local stable step, one collective: every rank learns the
   !> global step (ties to the lowest zone id) and the first failure.
-  subroutine end_of_cycle_control(mesh, state, config, bad, bad_kind, ctl)
+  subroutine end_of_cycle_control(mesh, state, config, bad, bad_kind, ctl, stop_request)
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
     type(config_t), intent(in) :: config
     integer, intent(in) :: bad !< local zone with bad volume (0 = none) from the last update
     integer, intent(in) :: bad_kind !< FAIL_VOLUME from an earlier stage, else FAIL_NONE
     type(control_t), intent(out) :: ctl
+    integer, intent(in), optional :: stop_request !< rank 0's STOP_* decision
     real(rk) :: record(NRECORD), dt
     real(rk), allocatable :: all(:, :)
     integer :: zone, reason, z, n, r, fail
@@ -189,7 +192,9 @@ contains
         end do
       end if
     end if
-    record = [dt, 0.0_rk, real(reason, rk), real(fail, rk), gid, where, 0.0_rk, 0.0_rk, 0.0_rk]
+    record = [dt, 0.0_rk, real(reason, rk), real(fail, rk), gid, where, 0.0_rk, 0.0_rk, 0.0_rk, &
+        0.0_rk]
+    if (present(stop_request)) record(12) = real(stop_request, rk)
     if (zone > 0) then
       record(2) = real(mesh%zone_gid(zone), rk)
       record(9:11) = hex_centroid(state%node_position(:, mesh%zone_node(:, zone)))
@@ -203,6 +208,7 @@ contains
         ctl%dt_reason = nint(all(3, r))
         ctl%dt_position = all(9:11, r)
       end if
+      ctl%stop = max(ctl%stop, nint(all(12, r)))
       if (nint(all(4, r)) /= FAIL_NONE .and. ctl%fail == FAIL_NONE) then
         ctl%fail = nint(all(4, r))
         ctl%fail_zone = all(5, r)
@@ -225,13 +231,16 @@ contains
     real(rk) :: wall_output, wall_mark
     integer(i8) :: cycle_status
     integer :: bad, bad_half
-    logical :: last, dump_now, ok
+    logical :: last, dump_now, ok, exists
+    integer :: request
+    real(rk) :: wall_cycle_start, cycle_wall, wall_dump
     character(len=16) :: reason
 
     code = EXIT_OK
     wall_start = wall_time()
     wall_status = wall_start
     wall_output = 0.0_rk
+    wall_dump = 0.0_rk
     cycle_status = state%cycle
     if (.not. restarted) then
       wall_mark = wall_time()
@@ -287,6 +296,7 @@ contains
         cycle
       end if
       state%dt = dt
+      wall_cycle_start = wall_time()
 
       if (state%cycle + 1 == config%fault_cycle .and. config%fault_kind == 'tangle') &
           call inject_tangle(mesh, state)
@@ -300,12 +310,44 @@ contains
 
       if (state%cycle == config%fault_cycle .and. config%fault_kind == 'nan') &
           call inject_nan(mesh, state)
+      ! Batch use: rank 0 decides on a clean stop (STOP file, wall-time limit);
+      ! the decision travels with the cycle's control reduction.
+      request = STOP_NONE
+      if (par_rank() == 0) then
+        cycle_wall = wall_time() - wall_cycle_start
+        if (config%wall_limit > 0.0_rk) then
+          if (wall_time() - wall_start + 3.0_rk * cycle_wall + 2.0_rk * wall_dump + 1.0_rk > &
+              config%wall_limit) request = STOP_WALL
+        end if
+        if (mod(state%cycle, int(config%stop_check_every, i8)) == 0) then
+          inquire(file=trim(config%output%directory)//'/'//trim(config%stop_file), &
+              exist=exists)
+          if (exists) request = STOP_FILE
+        end if
+      end if
       if (bad_half > 0) then
-        call end_of_cycle_control(mesh, state, config, bad_half, FAIL_VOLUME, ctl)
+        call end_of_cycle_control(mesh, state, config, bad_half, FAIL_VOLUME, ctl, request)
       else
-        call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl)
+        call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl, request)
       end if
       if (ctl%fail /= FAIL_NONE) cycle
+      if (ctl%stop /= STOP_NONE .and. .not. last) then
+        call history_write(config, mesh, state)
+        if (par_rank() == 0) then
+          if (ctl%stop == STOP_FILE) then
+            write(output_unit, '(a)') 'impact3d: stop file '''//trim(config%output%directory)// &
+                '/'//trim(config%stop_file)//''' found: writing a restart dump and stopping '// &
+                '(remove the file before restarting)'
+          else
+            write(output_unit, '(a)') 'impact3d: close to the wall-time limit: writing a '// &
+                'restart dump and stopping'
+          end if
+        end if
+        call write_dump(config, mesh, state, 'stop', wall_start, ok)
+        code = EXIT_INCOMPLETE
+        if (.not. ok) code = EXIT_FAILURE
+        return
+      end if
 
       if (mod(state%cycle, int(config%output%history_every, i8)) == 0 .or. last) &
           call history_write(config, mesh, state)
@@ -339,6 +381,7 @@ contains
           end if
         end if
       end if
+      wall_dump = max(wall_dump, wall_time() - wall_mark)
       wall_output = wall_output + (wall_time() - wall_mark)
     end do
     call write_dump(config, mesh, state, 'final', wall_start, ok)

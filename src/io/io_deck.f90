@@ -67,6 +67,9 @@ module io_deck
     character(len=80) :: title = ''
     real(rk) :: t_end = UNSET
     integer :: max_cycles = 10000000
+    real(rk) :: wall_limit = 0.0_rk !< wall-clock seconds; stop cleanly before (0 = none)
+    character(len=PATH_LEN) :: stop_file = 'STOP' !< its existence stops the run cleanly
+    integer :: stop_check_every = 10 !< cycles between looks for the stop file
     integer :: fault_cycle = 0 !< testing aid: inject a fault at this cycle (0 = never)
     character(len=8) :: fault_kind = 'nan' !< 'nan' (NaN energy) or 'tangle' (mirror zone 1)
     character(len=PATH_LEN) :: restart = ''
@@ -96,7 +99,7 @@ contains
     case ('control')
       keys = [character(len=KEY_LEN) :: 'title', 't_end', 'max_cycles', 'deck_version', &
           'restart', 'cfl', 'dt_initial', 'dt_max', 'dt_min', 'dt_growth', 'dvol_max', &
-          'fault_cycle', 'fault_kind']
+          'fault_cycle', 'fault_kind', 'wall_limit', 'stop_file', 'stop_check_every']
     case ('hydro')
       keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'q_limiter', &
           'q_linear_limited', 'hourglass', 'hourglass_coefficient']
@@ -308,17 +311,23 @@ contains
     character(len=80) :: title
     character(len=PATH_LEN) :: restart
     real(rk) :: t_end, cfl, dt_initial, dt_max, dt_min, dt_growth, dvol_max
-    integer :: max_cycles, deck_version, ios, fault_cycle
+    integer :: max_cycles, deck_version, ios, fault_cycle, stop_check_every
     character(len=8) :: fault_kind
+    character(len=PATH_LEN) :: stop_file
+    real(rk) :: wall_limit
     character(len=256) :: msg
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
-        dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind
+        dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind, wall_limit, stop_file, &
+        stop_check_every
 
     title = config%title
     t_end = config%t_end
     max_cycles = config%max_cycles
     fault_cycle = 0
     fault_kind = 'nan'
+    wall_limit = config%wall_limit
+    stop_file = config%stop_file
+    stop_check_every = config%stop_check_every
     deck_version = DECK_FORMAT_VERSION
     restart = ''
     cfl = config%hydro%cfl
@@ -342,6 +351,14 @@ contains
     if (fault_kind /= 'nan' .and. fault_kind /= 'tangle') call status%add('&control: '// &
         'fault_kind: '''//trim(fault_kind)//''' is not a fault (valid: nan, tangle)')
     config%fault_cycle = fault_cycle
+    if (wall_limit < 0.0_rk) call status%add('&control: wall_limit: must be >= 0 '// &
+        '(seconds; 0 = none)')
+    if (len_trim(stop_file) == 0 .or. index(stop_file, '/') > 0) call status%add('&control: '// &
+        'stop_file: must be a file name (in the output directory) without ''/''')
+    if (stop_check_every < 1) call status%add('&control: stop_check_every: must be >= 1')
+    config%wall_limit = wall_limit
+    config%stop_file = stop_file
+    config%stop_check_every = stop_check_every
     config%fault_kind = fault_kind
     if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
         'in (0, 1]')

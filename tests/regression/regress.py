@@ -432,12 +432,48 @@ def cmd_shell_stop(args):
           % (100 * worst), worst <= 0.02)
 
 
+def cmd_stopfile(args):
+    """A STOP file in the output directory: the run writes a restart dump and
+    exits with code 3 at its first check; restarted (without the file) on
+    another rank count it ends bitwise identical to an uninterrupted run."""
+    wd = os.path.join(args.workdir, "full")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("uninterrupted run exits 0", code == 0, err[-2000:])
+    full = final_dump(wd)
+    ws = os.path.join(args.workdir, "stopped")
+    if os.path.isdir(ws):
+        shutil.rmtree(ws)
+    os.makedirs(ws)
+    shutil.copy(args.deck, os.path.join(ws, "deck.nml"))
+    open(os.path.join(ws, "STOP"), "w").close()
+    cmd = [args.mpiexec, "-np", str(args.np), args.exe, "deck.nml"]
+    proc = subprocess.run(cmd, cwd=ws, env=ENV, capture_output=True, text=True)
+    check("stopped run exits with code 3", proc.returncode == 3,
+          "got %d: %s" % (proc.returncode, proc.stderr[-2000:]))
+    check("it says why", "stop file" in proc.stdout, proc.stdout[-1000:])
+    stop_dump = final_dump(ws)
+    check("restart dump written", stop_dump is not None and stop_dump != full)
+    if proc.returncode != 3 or stop_dump is None:
+        return
+    wr = os.path.join(args.workdir, "restarted")
+    code, out, err = run(args, args.restart_np, wr, args.deck,
+                         extra=["--restart", os.path.abspath(stop_dump)])
+    check("restarted run exits 0", code == 0, err[-2000:])
+    mine = os.path.join(wr, os.path.basename(full))
+    if os.path.exists(mine):
+        same, diff = h5same(full, mine)
+        check("final dump bitwise identical after the stop and restart", same, diff)
+    else:
+        check("restarted run ends at the same cycle", False, mine)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
                                         "convergence", "window", "interface", "stability",
-                                        "wavefront", "rebound", "twowave", "shell_stop"])
+                                        "wavefront", "rebound", "twowave", "shell_stop",
+                                        "stopfile"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
