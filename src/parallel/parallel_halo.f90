@@ -92,8 +92,9 @@ contains
       end do
       this%recv_start(k + 1) = this%recv_start(k) + need_count(r)
     end do
-    allocate(this%send_buffer(3 * max(1, sum(give_count))))
-    allocate(this%recv_buffer(3 * max(1, sum(need_count))))
+    ! One spare slot: an empty message still names its (first) buffer element.
+    allocate(this%send_buffer(3 * (sum(give_count) + 1)))
+    allocate(this%recv_buffer(3 * (sum(need_count) + 1)))
     allocate(this%requests(2 * this%nneighbour))
   end subroutine halo_init
 
@@ -157,13 +158,13 @@ contains
 
     if (this%nneighbour == 0) return
     comm = par_comm()
-    if (ncomp * (this%send_start(this%nneighbour + 1) - 1) > size(this%send_buffer)) then
+    if (ncomp * this%send_start(this%nneighbour + 1) > size(this%send_buffer)) then
       deallocate(this%send_buffer)
-      allocate(this%send_buffer(ncomp * (this%send_start(this%nneighbour + 1) - 1)))
+      allocate(this%send_buffer(ncomp * this%send_start(this%nneighbour + 1)))
     end if
-    if (ncomp * (this%recv_start(this%nneighbour + 1) - 1) > size(this%recv_buffer)) then
+    if (ncomp * this%recv_start(this%nneighbour + 1) > size(this%recv_buffer)) then
       deallocate(this%recv_buffer)
-      allocate(this%recv_buffer(ncomp * (this%recv_start(this%nneighbour + 1) - 1)))
+      allocate(this%recv_buffer(ncomp * this%recv_start(this%nneighbour + 1)))
     end if
     tag = 71
     do k = 1, this%nneighbour
