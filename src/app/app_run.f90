@@ -20,6 +20,8 @@ module app_run
   use io_h5, only: h5_library_open, h5_library_close
   use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
   use app_setup, only: setup_mesh, setup_state
+  use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
+      contact_diagnostics, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
   use parallel_env, only: par_rank, par_size, par_allgather, par_sum, par_sum_array, par_bcast
   implicit none
   private
@@ -56,6 +58,7 @@ contains
     type(boundary_t) :: bc
     type(state_t) :: state
     type(material_zones_t) :: mz
+    type(contact_t) :: ct
     type(control_t) :: ctl
     character(len=256) :: restart
     character(len=400) :: msg
@@ -82,6 +85,8 @@ contains
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
+    if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
+        status)
     if (.not. status%ok()) then
       call report(status)
       code = EXIT_INPUT
@@ -108,7 +113,7 @@ contains
     else
       call history_open(config, state, .true.)
     end if
-    call time_loop(config, mesh, state, mz, bc, ctl, len_trim(restart) > 0, code)
+    call time_loop(config, mesh, state, mz, bc, ct, ctl, len_trim(restart) > 0, code)
     call h5_library_close(ierr, msg)
   end subroutine run_deck
 
@@ -218,16 +223,17 @@ contains
   end subroutine end_of_cycle_control
 
   !> The predictor-corrector loop.
-  subroutine time_loop(config, mesh, state, mz, bc, ctl, restarted, code)
+  subroutine time_loop(config, mesh, state, mz, bc, ct, ctl, restarted, code)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
     type(material_zones_t), intent(in) :: mz
     type(boundary_t), intent(inout) :: bc
+    type(contact_t), intent(inout) :: ct
     type(control_t), intent(inout) :: ctl
     logical, intent(in) :: restarted
     integer, intent(out) :: code
-    real(rk) :: dt, dt_stable, next_dump, work, wall_start, wall_status, work_sum
+    real(rk) :: dt, dt_stable, next_dump, work, wall_start, wall_status, work_sum, contact_work
     real(rk) :: wall_output, wall_mark
     integer(i8) :: cycle_status
     integer :: bad, bad_half
@@ -300,8 +306,9 @@ contains
 
       if (state%cycle + 1 == config%fault_cycle .and. config%fault_kind == 'tangle') &
           call inject_tangle(mesh, state)
-      call step(config, mesh, state, mz, bc, dt, bad_half, bad, work)
+      call step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work)
       state%boundary_work = state%boundary_work + par_sum(work)
+      if (ct%npair > 0) call contact_cycle_end(config, ct, state, par_sum(contact_work))
       state%time = state%time + dt
       if (last) state%time = config%t_end
       if (dump_now .and. abs(state%time - next_dump) <= 1.0e-9_rk * dt) state%time = next_dump
@@ -332,7 +339,7 @@ contains
       end if
       if (ctl%fail /= FAIL_NONE) cycle
       if (ctl%stop /= STOP_NONE .and. .not. last) then
-        call history_write(config, mesh, state)
+        call history_write(config, mesh, state, ct)
         if (par_rank() == 0) then
           if (ctl%stop == STOP_FILE) then
             write(output_unit, '(a)') 'impact3d: stop file '''//trim(config%output%directory)// &
@@ -350,7 +357,7 @@ contains
       end if
 
       if (mod(state%cycle, int(config%output%history_every, i8)) == 0 .or. last) &
-          call history_write(config, mesh, state)
+          call history_write(config, mesh, state, ct)
       if (mod(state%cycle, int(config%output%status_every, i8)) == 0 .or. last) then
         work_sum = real(mesh%nzone_global, rk) * real(state%cycle - cycle_status, rk)
         select case (ctl%dt_reason)
@@ -394,6 +401,28 @@ contains
         ' s of it in dumps)'
   end subroutine time_loop
 
+  !> Contact bookkeeping at the end of a cycle: contact work, and a warning
+  !> (once per pair) when the penetration exceeds the deck's tolerance.
+  subroutine contact_cycle_end(config, ct, state, work)
+    type(config_t), intent(in) :: config
+    type(contact_t), intent(inout) :: ct
+    type(state_t), intent(inout) :: state
+    real(rk), intent(in) :: work !< contact work of the step, summed over ranks
+    integer :: k
+    state%contact_work = state%contact_work + work
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        if (p%warned .or. .not. p%diag(3) > p%spec%penetration_warning) cycle
+        p%warned = .true.
+        if (par_rank() == 0) write(error_unit, '(a,es10.3,a,es10.3,a,i0,a,es12.5,a)') &
+            'impact3d: warning: &contact '''//trim(config%contacts(k)%name)// &
+            ''': penetration ', p%diag(3), ' exceeds penetration_warning = ', &
+            p%spec%penetration_warning, ' at cycle ', state%cycle, ', t = ', state%time, &
+            ' (reported once)'
+      end associate
+    end do
+  end subroutine contact_cycle_end
+
   !> Testing aid (&control fault_nan_cycle): a NaN energy in global zone 1.
   subroutine inject_nan(mesh, state)
     type(mesh_t), intent(in) :: mesh
@@ -426,15 +455,17 @@ contains
   end subroutine inject_tangle
 
   !> One predictor-corrector cycle from t^n to t^n+1.
-  subroutine step(config, mesh, state, mz, bc, dt, bad_half, bad, work)
+  subroutine step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
     type(material_zones_t), intent(in) :: mz
     type(boundary_t), intent(inout) :: bc
+    type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: dt
     integer, intent(out) :: bad_half, bad
-    real(rk), intent(out) :: work
+    real(rk), intent(out) :: work !< boundary work of the step (local)
+    real(rk), intent(out) :: contact_work !< contact work of the step (local)
     real(rk) :: unused
     integer :: n
     logical :: strength
@@ -453,6 +484,11 @@ contains
       call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
           state%node_velocity, 0.0_rk)
     end if
+    ! Contact acts on the predictor's half step too, as the rigid wall does:
+    ! otherwise the half-step geometry interpenetrates freely and the contact
+    ! pressure lags half a step (the mirror test shows it).
+    if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
+        state%node_force, 0.5_rk * dt, state%cycle + 1, wall_time)
     call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
     call mesh%node_halo%exchange(state%node_velocity_half)
     do n = 1, mesh%nnode
@@ -473,7 +509,13 @@ contains
       call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
           state%node_velocity_half, dt)
     end if
+    ! Contact on the final update, boundary conditions re-imposed after it.
+    contact_work = 0.0_rk
+    if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
+        state%node_force, dt, state%cycle + 1, wall_time)
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
+    if (ct%npair > 0) contact_work = contact_work_update(ct, state%node_velocity_old, &
+        state%node_velocity, dt)
     call mesh%node_halo%exchange(state%node_velocity)
     do n = 1, mesh%nnode
       state%node_velocity_half(:, n) = 0.5_rk * (state%node_velocity_old(:, n) + &
@@ -569,9 +611,10 @@ contains
     type(config_t), intent(in) :: config
     type(state_t), intent(in) :: state
     logical, intent(in) :: restarted
-    integer :: unit, ios, n
-    character(len=512) :: line
-    character(len=512), allocatable :: keep(:)
+    integer :: unit, ios, n, k, j
+    character(len=4096) :: line
+    character(len=4096), allocatable :: keep(:)
+    character(len=:), allocatable :: header
     integer(i8) :: c
     character(len=:), allocatable :: path
     logical :: exists
@@ -591,35 +634,48 @@ contains
       close(unit)
     end if
     open(newunit=unit, file=path, status='replace', action='write')
-    write(unit, '(a)') '# cycle time dt internal_energy kinetic_energy boundary_work '// &
-        'total_energy energy_error momentum_x momentum_y momentum_z'
+    header = '# cycle time dt internal_energy kinetic_energy boundary_work '// &
+        'total_energy energy_error momentum_x momentum_y momentum_z contact_work'
+    do k = 1, size(config%contacts)
+      do j = 1, CONTACT_DIAG_COUNT
+        header = header//' '//trim(config%contacts(k)%name)//'_'//trim(CONTACT_DIAG_NAMES(j))
+      end do
+    end do
+    write(unit, '(a)') header
     do n = 1, size(keep)
       write(unit, '(a)') trim(keep(n))
     end do
     close(unit)
   end subroutine history_open
 
-  subroutine history_write(config, mesh, state)
+  subroutine history_write(config, mesh, state, ct)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
+    type(contact_t), intent(in) :: ct
     real(rk) :: sums(5), total
-    integer :: unit
+    integer :: unit, k
     call hydro_energies(mesh, state, sums)
     call par_sum_array(sums)
     if (par_rank() /= 0) return
     total = sums(1) + sums(2)
     open(newunit=unit, file=trim(config%output%directory)//'/history.txt', status='old', &
         position='append', action='write')
-    write(unit, '(i0,10(1x,es23.15e3))') state%cycle, state%time, state%dt, sums(1), sums(2), &
-        state%boundary_work, total, relative_error(total, state), sums(3:5)
+    write(unit, '(i0,10(1x,es23.15e3))', advance='no') state%cycle, state%time, state%dt, &
+        sums(1), sums(2), state%boundary_work, total, relative_error(total, state), sums(3:5)
+    write(unit, '(1x,es23.15e3)', advance='no') state%contact_work
+    do k = 1, ct%npair
+      write(unit, '(*(1x,es23.15e3))', advance='no') ct%pairs(k)%diag
+    end do
+    write(unit, '(a)') ''
     close(unit)
   end subroutine history_write
 
   real(rk) function relative_error(total, state)
     real(rk), intent(in) :: total
     type(state_t), intent(in) :: state
-    relative_error = (total - state%boundary_work - state%energy_initial) / &
+    relative_error = (total - state%boundary_work - state%contact_work - &
+        state%energy_initial) / &
         max(abs(state%energy_initial), tiny(1.0_rk))
   end function relative_error
 

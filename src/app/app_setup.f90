@@ -3,7 +3,7 @@ module app_setup
   use core_kinds, only: rk, ik
   use core_status, only: status_t
   use mesh_geometry, only: hex_centroid
-  use mesh_global, only: global_mesh_t, mesh_make_box, NAME_LEN
+  use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_gmsh, only: mesh_read_gmsh
   use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant
   use mesh_local, only: mesh_t, mesh_build_local
@@ -21,7 +21,8 @@ module app_setup
 
 contains
 
-  !> Each zone belongs to the last block whose box holds its centroid.
+  !> Each zone not yet in a block belongs to the last block whose box holds
+  !> its centroid.
   subroutine assign_blocks(config, global, status)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(inout) :: global
@@ -32,7 +33,7 @@ contains
     missing = 0
     do z = 1, global%nzone
       c = hex_centroid(global%coordinates(:, global%connectivity(:, z)))
-      global%zone_block(z) = 0
+      if (global%zone_block(z) /= 0) cycle
       do b = 1, size(config%blocks)
         associate(box => config%blocks(b)%box)
           if (c(1) >= box(1) .and. c(1) <= box(2) .and. c(2) >= box(3) .and. &
@@ -75,7 +76,8 @@ contains
     end do
   end subroutine assign_blocks_by_name
 
-  !> Build the global mesh, check blocks and boundaries, partition, localise.
+  !> Build the global mesh (every &mesh part, appended in deck order), check
+  !> blocks and boundaries, partition, localise.
   subroutine setup_mesh(config, global, mesh, bc, status)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(inout) :: global
@@ -84,24 +86,56 @@ contains
     type(status_t), intent(inout) :: status
     integer(ik), allocatable :: part(:)
     character(len=NAME_LEN), allocatable :: group_names(:)
-    select case (config%mesh_type)
-    case ('rod')
-      call mesh_make_rod(config%rod, global, status)
-    case ('tube')
-      call mesh_make_tube(config%tube, global, status)
-    case ('shell')
-      call mesh_make_shell_octant(config%shell, global, status)
-    case ('gmsh')
-      call mesh_read_gmsh(trim(config%mesh_file), global, group_names, status)
-    case default
-      call mesh_make_box(config%box, global, status)
-    end select
-    if (.not. status%ok()) return
-    if (config%mesh_type == 'gmsh') then
-      call assign_blocks_by_name(config, group_names, global, status)
-    else
-      call assign_blocks(config, global, status)
-    end if
+    type(global_mesh_t) :: piece
+    integer :: k, n, b
+    character(len=16) :: where
+
+    call global%free()
+    allocate(global%coordinates(3, 0), global%connectivity(8, 0), global%zone_block(0))
+    do k = 1, size(config%parts)
+      associate(spec => config%parts(k))
+        where = '&mesh'
+        if (size(config%parts) > 1) write(where, '(a,i0,a)') '&mesh(', k, ')'
+        select case (spec%mesh_type)
+        case ('rod')
+          call mesh_make_rod(spec%rod, piece, status)
+        case ('tube')
+          call mesh_make_tube(spec%tube, piece, status)
+        case ('shell')
+          call mesh_make_shell_octant(spec%shell, piece, status)
+        case ('gmsh')
+          call mesh_read_gmsh(trim(spec%mesh_file), piece, group_names, status)
+        case default
+          call mesh_make_box(spec%box, piece, status)
+        end select
+        if (.not. status%ok()) return
+        do n = 1, piece%nnode
+          piece%coordinates(:, n) = piece%coordinates(:, n) + spec%offset
+        end do
+        ! Blocks: the part's own block, else its physical volumes (Gmsh), else
+        ! the block boxes (after the parts are joined).
+        if (len_trim(spec%block) > 0) then
+          b = 0
+          do n = 1, size(config%blocks)
+            if (config%blocks(n)%name == spec%block) b = n
+          end do
+          if (b == 0) then
+            call status%add(trim(where)//': block: '''//trim(spec%block)// &
+                ''' is not the name of a &block')
+            return
+          end if
+          piece%zone_block = int(b, ik)
+        else if (spec%mesh_type == 'gmsh') then
+          call assign_blocks_by_name(config, group_names, piece, status)
+          if (.not. status%ok()) return
+        else
+          piece%zone_block = 0
+        end if
+        call mesh_append(global, piece, trim(spec%name))
+        call piece%free()
+      end associate
+    end do
+    call assign_blocks(config, global, status)
     if (.not. status%ok()) return
     allocate(part(global%nzone))
     call partition_zones(global%nnode, global%connectivity, par_size(), part)
@@ -126,9 +160,6 @@ contains
       if (global%find_set(config%contacts(k)%surface_b) == 0) call status%add(trim(where)// &
           ': surface_b: '''//trim(config%contacts(k)%surface_b)//''' is not a face set of the mesh')
     end do
-    if (size(config%contacts) > 0 .and. status%ok()) call status%add('&contact: method: '// &
-        'contact enforcement (DAM, DLM) is not implemented in this build yet; the deck is '// &
-        'valid but cannot be run')
   end subroutine check_contacts
 
   !> Allocate the state and apply the initial conditions (positions from the

@@ -45,7 +45,7 @@ module contact_search
   implicit none
   private
   public :: segment_territory, bucket_search, closest_point, contact_kind, primary_pairs
-  public :: pair_excluded, search_interval, largest_relative_speed
+  public :: pair_excluded, search_interval, largest_relative_speed, segment_pair_search
 
   !> No contact.
   integer, parameter, public :: KIND_NONE = 0
@@ -80,6 +80,16 @@ module contact_search
     real(rk) :: gap = 0.0_rk !< signed gap, negative = penetration
     real(rk) :: normal(3) = 0.0_rk !< unit contact normal, outward from the master
   end type primary_pair_t
+
+  !> Bucket grid of segment territories: sorted cell keys with a CSR into the
+  !> segments (see the module notes).
+  type :: bucket_grid_t
+    real(rk), allocatable :: lo(:, :), hi(:, :) !< (3, nseg) territories
+    real(rk) :: h = 0.0_rk, origin(3) = 0.0_rk, top(3) = 0.0_rk
+    integer(i8) :: ncell(3) = 1
+    integer(i8), allocatable :: bucket_key(:)
+    integer, allocatable :: bucket_start(:), bucket_segment(:)
+  end type bucket_grid_t
 
 contains
 
@@ -117,51 +127,146 @@ contains
     logical, intent(in) :: self_contact !< slave and master are the same surface
     real(rk), intent(in) :: margin !< territory growth, >= 0
     integer, allocatable, intent(out) :: pairs(:, :) !< (2, npair): node id, segment
-    real(rk), allocatable :: lo(:, :), hi(:, :), sizes(:)
-    integer(i8), allocatable :: entry_key(:), bucket_key(:)
-    integer, allocatable :: entry_segment(:), perm(:), bucket_start(:), bucket_segment(:)
+    type(bucket_grid_t) :: grid
     integer(ik), allocatable :: ring(:)
-    real(rk) :: h, origin(3), top(3), p(3)
-    integer(i8) :: ncell(3), cell_lo(3), cell_hi(3), cell(3), nentry, i, j, k, key
-    integer :: nseg, s, n, nbucket, b, e, npair, node, m, nring
+    real(rk) :: p(3)
+    integer(i8) :: cell(3), key
+    integer :: s, n, b, e, npair, node, nring
 
-    nseg = master%nseg
     npair = 0
     allocate(pairs(2, 0))
-    if (nseg == 0 .or. slave%nnode == 0) return
-    allocate(lo(3, nseg), hi(3, nseg), sizes(nseg))
+    if (master%nseg == 0 .or. slave%nnode == 0) return
+    call build_buckets(x, master, margin, grid)
+
+    ! Each slave node looks in its own bucket.
+    allocate(ring(4 * maxval(slave%node_start(2:) - slave%node_start(:slave%nnode))))
+    do n = 1, slave%nnode
+      node = slave%nodes(n)
+      p = x(:, node)
+      if (any(p < grid%origin) .or. any(p > grid%top)) cycle
+      cell = grid_cell(grid, p)
+      key = cell(1) + grid%ncell(1) * (cell(2) + grid%ncell(2) * cell(3))
+      b = find_key(grid%bucket_key, key)
+      if (b == 0) cycle
+      call node_ring(slave, n, self_contact, ring, nring)
+      do e = grid%bucket_start(b), grid%bucket_start(b + 1) - 1
+        s = grid%bucket_segment(e)
+        if (any(p < grid%lo(:, s)) .or. any(p > grid%hi(:, s))) cycle
+        if (pair_excluded(master%segments(:, s), ring(:nring))) cycle
+        call append_pair(pairs, npair, node, s)
+      end do
+    end do
+    pairs = pairs(:, :npair)
+  end subroutine bucket_search
+
+  !> Global search for segment pairs: (a, b), a a segment of surf_a and b one of
+  !> surf_b, with a's bounding box overlapping b's territory (grown by margin).
+  !> Sorted by (a, b). In self-contact (the same surface twice) each pair is
+  !> listed once, a < b, and segments sharing a node are never paired.
+  subroutine segment_pair_search(x, surf_a, surf_b, self_contact, margin, pairs)
+    real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
+    type(contact_surface_t), intent(in) :: surf_a, surf_b
+    logical, intent(in) :: self_contact
+    real(rk), intent(in) :: margin !< territory growth of surf_b's segments, >= 0
+    integer, allocatable, intent(out) :: pairs(:, :) !< (2, npair): segment of a, of b
+    type(bucket_grid_t) :: grid
+    integer, allocatable :: mark(:)
+    real(rk) :: lo(3), hi(3)
+    integer(i8) :: cell_lo(3), cell_hi(3), i, j, k, key
+    integer :: sa, sb, b, e, npair, first, m, swap
+
+    npair = 0
+    allocate(pairs(2, 0))
+    if (surf_a%nseg == 0 .or. surf_b%nseg == 0) return
+    call build_buckets(x, surf_b, margin, grid)
+    allocate(mark(surf_b%nseg))
+    mark = 0
+    do sa = 1, surf_a%nseg
+      call segment_territory(x(:, surf_a%segments(:, sa)), 0.0_rk, lo, hi)
+      if (any(hi < grid%origin) .or. any(lo > grid%top)) cycle
+      first = npair + 1
+      cell_lo = grid_cell(grid, lo)
+      cell_hi = grid_cell(grid, hi)
+      do k = cell_lo(3), cell_hi(3)
+        do j = cell_lo(2), cell_hi(2)
+          do i = cell_lo(1), cell_hi(1)
+            key = i + grid%ncell(1) * (j + grid%ncell(2) * k)
+            b = find_key(grid%bucket_key, key)
+            if (b == 0) cycle
+            do e = grid%bucket_start(b), grid%bucket_start(b + 1) - 1
+              sb = grid%bucket_segment(e)
+              if (mark(sb) == sa) cycle
+              mark(sb) = sa
+              if (any(hi < grid%lo(:, sb)) .or. any(lo > grid%hi(:, sb))) cycle
+              if (self_contact) then
+                if (sb <= sa) cycle
+                if (pair_excluded(surf_b%segments(:, sb), surf_a%segments(:, sa))) cycle
+              end if
+              call append_pair(pairs, npair, sa, sb)
+            end do
+          end do
+        end do
+      end do
+      ! Ascending b within a (insertion sort of this short run).
+      do m = first + 1, npair
+        swap = pairs(2, m)
+        e = m - 1
+        do while (e >= first)
+          if (pairs(2, e) <= swap) exit
+          pairs(2, e + 1) = pairs(2, e)
+          e = e - 1
+        end do
+        pairs(2, e + 1) = swap
+      end do
+    end do
+    pairs = pairs(:, :npair)
+  end subroutine segment_pair_search
+
+  !> Buckets of the territories of the master segments (see the module notes).
+  subroutine build_buckets(x, master, margin, g)
+    real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
+    type(contact_surface_t), intent(in) :: master
+    real(rk), intent(in) :: margin !< territory growth, >= 0
+    type(bucket_grid_t), intent(out) :: g
+    real(rk), allocatable :: sizes(:)
+    integer(i8), allocatable :: entry_key(:)
+    integer, allocatable :: entry_segment(:), perm(:)
+    integer(i8) :: cell_lo(3), cell_hi(3), nentry, i, j, k
+    integer :: nseg, s, nbucket, m
+    nseg = master%nseg
+    allocate(g%lo(3, nseg), g%hi(3, nseg), sizes(nseg))
     do s = 1, nseg
-      call segment_territory(x(:, master%segments(:, s)), margin, lo(:, s), hi(:, s))
-      sizes(s) = maxval(hi(:, s) - lo(:, s))
+      call segment_territory(x(:, master%segments(:, s)), margin, g%lo(:, s), g%hi(:, s))
+      sizes(s) = maxval(g%hi(:, s) - g%lo(:, s))
     end do
     call sort_real(sizes)
-    h = sizes((nseg + 1) / 2)
-    origin = minval(lo, dim=2)
-    top = maxval(hi, dim=2)
-    if (.not. h > 0.0_rk) h = max(maxval(top - origin), 1.0_rk)
+    g%h = sizes((nseg + 1) / 2)
+    g%origin = minval(g%lo, dim=2)
+    g%top = maxval(g%hi, dim=2)
+    if (.not. g%h > 0.0_rk) g%h = max(maxval(g%top - g%origin), 1.0_rk)
     do
-      ncell = floor((top - origin) / h, i8) + 1_i8
-      if (product(real(ncell, rk)) < MAX_CELLS) exit
-      h = 2.0_rk * h
+      g%ncell = floor((g%top - g%origin) / g%h, i8) + 1_i8
+      if (product(real(g%ncell, rk)) < MAX_CELLS) exit
+      g%h = 2.0_rk * g%h
     end do
 
     ! Entries (cell key, segment) for every cell each territory overlaps.
     nentry = 0
     do s = 1, nseg
-      cell_lo = cell_of(lo(:, s))
-      cell_hi = cell_of(hi(:, s))
+      cell_lo = grid_cell(g, g%lo(:, s))
+      cell_hi = grid_cell(g, g%hi(:, s))
       nentry = nentry + product(cell_hi - cell_lo + 1_i8)
     end do
     allocate(entry_key(nentry), entry_segment(nentry))
     nentry = 0
     do s = 1, nseg
-      cell_lo = cell_of(lo(:, s))
-      cell_hi = cell_of(hi(:, s))
+      cell_lo = grid_cell(g, g%lo(:, s))
+      cell_hi = grid_cell(g, g%hi(:, s))
       do k = cell_lo(3), cell_hi(3)
         do j = cell_lo(2), cell_hi(2)
           do i = cell_lo(1), cell_hi(1)
             nentry = nentry + 1
-            entry_key(nentry) = i + ncell(1) * (j + ncell(2) * k)
+            entry_key(nentry) = i + g%ncell(1) * (j + g%ncell(2) * k)
             entry_segment(nentry) = s
           end do
         end do
@@ -178,52 +283,33 @@ contains
         nbucket = nbucket + 1
       end if
     end do
-    allocate(bucket_key(nbucket), bucket_start(nbucket + 1), bucket_segment(nentry))
+    allocate(g%bucket_key(nbucket), g%bucket_start(nbucket + 1), g%bucket_segment(nentry))
     nbucket = 0
     do m = 1, int(nentry)
       if (m == 1) then
         nbucket = 1
-        bucket_key(1) = entry_key(perm(1))
-        bucket_start(1) = 1
+        g%bucket_key(1) = entry_key(perm(1))
+        g%bucket_start(1) = 1
       else if (entry_key(perm(m)) /= entry_key(perm(m - 1))) then
         nbucket = nbucket + 1
-        bucket_key(nbucket) = entry_key(perm(m))
-        bucket_start(nbucket) = m
+        g%bucket_key(nbucket) = entry_key(perm(m))
+        g%bucket_start(nbucket) = m
       end if
-      bucket_segment(m) = entry_segment(perm(m))
+      g%bucket_segment(m) = entry_segment(perm(m))
     end do
-    bucket_start(nbucket + 1) = int(nentry) + 1
+    g%bucket_start(nbucket + 1) = int(nentry) + 1
     deallocate(entry_key, entry_segment, perm)
 
-    ! Each slave node looks in its own bucket.
-    allocate(ring(4 * maxval(slave%node_start(2:) - slave%node_start(:slave%nnode))))
-    do n = 1, slave%nnode
-      node = slave%nodes(n)
-      p = x(:, node)
-      if (any(p < origin) .or. any(p > top)) cycle
-      cell = cell_of(p)
-      key = cell(1) + ncell(1) * (cell(2) + ncell(2) * cell(3))
-      b = find_key(bucket_key, key)
-      if (b == 0) cycle
-      call node_ring(slave, n, self_contact, ring, nring)
-      do e = bucket_start(b), bucket_start(b + 1) - 1
-        s = bucket_segment(e)
-        if (any(p < lo(:, s)) .or. any(p > hi(:, s))) cycle
-        if (pair_excluded(master%segments(:, s), ring(:nring))) cycle
-        call append_pair(pairs, npair, node, s)
-      end do
-    end do
-    pairs = pairs(:, :npair)
+  end subroutine build_buckets
 
-  contains
+  !> Cell of a point, clamped to the grid.
+  pure function grid_cell(g, point) result(c)
+    type(bucket_grid_t), intent(in) :: g
+    real(rk), intent(in) :: point(3)
+    integer(i8) :: c(3)
+    c = min(max(floor((point - g%origin) / g%h, i8), 0_i8), g%ncell - 1_i8)
+  end function grid_cell
 
-    pure function cell_of(point) result(c)
-      real(rk), intent(in) :: point(3)
-      integer(i8) :: c(3)
-      c = min(max(floor((point - origin) / h, i8), 0_i8), ncell - 1_i8)
-    end function cell_of
-
-  end subroutine bucket_search
 
   !> Excluded nodes of surface node n: itself, and in self-contact every node
   !> of its segments.

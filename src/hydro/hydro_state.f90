@@ -56,6 +56,7 @@ module hydro_state
     real(rk) :: dt_previous = 0.0_rk !< step of the previous cycle (0 before the first)
     integer(i8) :: cycle = 0 !< cycles done
     real(rk) :: boundary_work = 0.0_rk !< work done on the body by boundaries (diagnostic)
+    real(rk) :: contact_work = 0.0_rk !< work of the contact forces (diagnostic)
     real(rk) :: energy_initial = 0.0_rk !< total energy at t = 0 (diagnostic)
   end type state_t
 

@@ -16,6 +16,7 @@ module io_deck
       BC_WALL
   use hydro_initial, only: region_t, UNSET
   use parallel_env, only: par_rank, par_bcast
+  use contact_enforce, only: contact_spec_t
   implicit none
   private
   public :: deck_read, deck_known_keys
@@ -44,18 +45,20 @@ module io_deck
     integer :: history_every = 1 !< cycles between history lines
   end type output_options_t
 
-  !> One &contact group: a pair of surfaces (or one with itself) and its method.
-  type, public :: contact_spec_t
-    character(len=NAME_LEN) :: name = ''
-    character(len=NAME_LEN) :: surface_a = '' !< face set
-    character(len=NAME_LEN) :: surface_b = '' !< face set ('' or = surface_a: self-contact)
-    character(len=8) :: method = '' !< 'dam' or 'dlm'
-    character(len=1) :: master = 'b' !< DAM master side
-    real(rk) :: capture = 0.0_rk !< capture tolerance (largest open gap treated as contact)
-    real(rk) :: penetration_warning = huge(1.0_rk) !< warn above this penetration
-    real(rk) :: search_margin = 0.0_rk !< territory margin (0 = automatic)
-    integer :: search_every = 0 !< cycles between global searches (0 = automatic)
-  end type contact_spec_t
+
+  !> One &mesh group: a generated or imported mesh part. Parts share no
+  !> nodes; several parts make separate bodies (which meet through &contact).
+  type, public :: mesh_part_t
+    character(len=NAME_LEN) :: name = '' !< prefix of the part's own face sets
+    character(len=16) :: mesh_type = 'box'
+    type(box_spec_t) :: box
+    type(rod_spec_t) :: rod
+    type(tube_spec_t) :: tube
+    type(shell_spec_t) :: shell
+    character(len=PATH_LEN) :: mesh_file = ''
+    real(rk) :: offset(3) = 0.0_rk !< translation applied to the part
+    character(len=NAME_LEN) :: block = '' !< every zone of the part in this &block
+  end type mesh_part_t
 
   !> A group's text as read (unknown keys blanked).
   type :: section_t
@@ -74,12 +77,7 @@ module io_deck
     character(len=8) :: fault_kind = 'nan' !< 'nan' (NaN energy) or 'tangle' (mirror zone 1)
     character(len=PATH_LEN) :: restart = ''
     type(hydro_options_t) :: hydro
-    character(len=16) :: mesh_type = 'box'
-    type(box_spec_t) :: box
-    type(rod_spec_t) :: rod
-    type(tube_spec_t) :: tube
-    type(shell_spec_t) :: shell
-    character(len=PATH_LEN) :: mesh_file = ''
+    type(mesh_part_t), allocatable :: parts(:) !< one per &mesh group, appended in order
     type(material_t), allocatable :: materials(:)
     type(block_spec_t), allocatable :: blocks(:)
     type(region_t), allocatable :: regions(:)
@@ -107,7 +105,7 @@ contains
       keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
           'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb', 'radius', 'length', 'z0', 'sector', &
           'n_core', 'n_radial', 'n_axial', 'axial_ratio', 'core_fraction', 'ri', 'ro', 'n_theta', &
-          'axis', 'origin', 'n_patch', 'radial_ratio', 'file']
+          'axis', 'origin', 'n_patch', 'radial_ratio', 'file', 'name', 'offset', 'block']
     case ('material')
       keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma', 'library', 'rho0', 'c0', 's1', &
           'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress']
@@ -124,7 +122,7 @@ contains
           'dump_cycles', 'status_every', 'history_every']
     case ('contact')
       keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
-          'capture', 'penetration_warning', 'search_margin', 'search_every']
+          'capture', 'penetration_warning', 'search_margin', 'search_every', 'form']
     case default
       allocate(keys(0))
     end select
@@ -171,11 +169,13 @@ contains
     end do
     do k = 1, NGROUP_KNOWN
       select case (GROUP_NAMES(k))
-      case ('control', 'mesh')
+      case ('control')
         if (counts(k) == 0) call status%add('&'//trim(GROUP_NAMES(k))// &
             ': required group is missing')
         if (counts(k) > 1) call status%add('&'//trim(GROUP_NAMES(k))// &
             ': group given more than once')
+      case ('mesh')
+        if (counts(k) == 0) call status%add('&mesh: required group is missing')
       case ('hydro', 'output')
         if (counts(k) > 1) call status%add('&'//trim(GROUP_NAMES(k))// &
             ': group given more than once')
@@ -189,6 +189,7 @@ contains
 
     allocate(config%materials(counts(4)), config%blocks(counts(5)), config%regions(counts(6)))
     allocate(config%boundaries(counts(7)), config%contacts(counts(9)))
+    allocate(config%parts(counts(3)))
     counts = 0
     allocate(sections(ngroup))
     do ig = 1, ngroup
@@ -203,7 +204,8 @@ contains
         case ('hydro')
           call read_hydro(sect, config%hydro, status)
         case ('mesh')
-          call read_mesh(sect, config, status)
+          counts(3) = counts(3) + 1
+          call read_mesh(sect, counts(3), size(config%parts), config%parts(counts(3)), status)
         case ('material')
           counts(4) = counts(4) + 1
           call read_material(sect, counts(4), config%materials(counts(4)), status, &
@@ -428,9 +430,11 @@ contains
     opt%hourglass_coefficient = hourglass_coefficient
   end subroutine read_hydro
 
-  subroutine read_mesh(sect, config, status)
+  subroutine read_mesh(sect, index, nparts, part, status)
     character(len=LINE_LEN), intent(in) :: sect(:)
-    type(config_t), intent(inout) :: config
+    integer, intent(in) :: index !< this group's place among the &mesh groups
+    integer, intent(in) :: nparts !< number of &mesh groups
+    type(mesh_part_t), intent(inout) :: part
     type(status_t), intent(inout) :: status
     character(len=16) :: type, sector
     real(rk) :: x(MAX_INTERVALS + 1), y(MAX_INTERVALS + 1), z(MAX_INTERVALS + 1)
@@ -441,12 +445,15 @@ contains
     real(rk) :: radial_ratio
     integer :: n_core, n_radial, n_axial, n_theta, n_patch
     character(len=PATH_LEN) :: file
+    character(len=NAME_LEN) :: name, block
+    real(rk) :: offset(3)
+    character(len=16) :: where
     integer :: ios
     character(len=256) :: msg
     logical :: box_keys, curved_keys, exists
     namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude, perturb, &
         radius, length, z0, sector, n_core, n_radial, n_axial, axial_ratio, core_fraction, ri, ro, &
-        n_theta, axis, origin, n_patch, radial_ratio, file
+        n_theta, axis, origin, n_patch, radial_ratio, file, name, offset, block
 
     type = 'box'
     x = UNSET
@@ -477,68 +484,80 @@ contains
     n_patch = -1
     radial_ratio = UNSET
     file = ''
+    name = ''
+    offset = 0.0_rk
+    block = ''
+    where = '&mesh'
+    if (nparts > 1) write(where, '(a,i0,a)') '&mesh(', index, ')'
     read(sect, nml=mesh, iostat=ios, iomsg=msg)
-    call nml_error('mesh', ios, msg, status)
+    call nml_error(trim(where(2:)), ios, msg, status)
     if (ios /= 0) return
-    config%mesh_type = to_lower(type)
+    part%mesh_type = to_lower(type)
+    part%name = name
+    part%offset = offset
+    part%block = block
+    if (nparts > 1 .and. len_trim(name) == 0) call status%add(trim(where)//': name: required '// &
+        'when the deck has several &mesh parts (it prefixes the part''s face sets)')
+    if (.not. all(abs(offset) < huge(1.0_rk))) call status%add(trim(where)//': offset: '// &
+        'must be finite')
     box_keys = any(x /= UNSET) .or. any(nx /= 0) .or. skew_amplitude /= 0.0_rk .or. &
         perturb /= 0.0_rk
     curved_keys = radius /= UNSET .or. length /= UNSET .or. ri /= UNSET .or. ro /= UNSET .or. &
         n_radial /= -1 .or. n_axial /= -1 .or. n_theta /= -1 .or. n_patch /= -1 .or. &
         n_core /= -1
-    select case (config%mesh_type)
+    select case (part%mesh_type)
     case ('box')
-      if (curved_keys) call status%add('&mesh: type: ''box'' takes x, y, z, nx, ny, nz, '// &
+      if (curved_keys) call status%add(trim(where)//': type: ''box'' takes x, y, z, nx, ny, nz, '// &
           'ratio_*, skew_amplitude, perturb (radius, ri, ro, n_* belong to rod, tube, shell)')
       call direction('x', x, nx, ratio_x, 1)
       call direction('y', y, ny, ratio_y, 2)
       call direction('z', z, nz, ratio_z, 3)
-      config%box%skew_amplitude = skew_amplitude
-      if (perturb < 0.0_rk .or. perturb >= 0.5_rk) call status%add('&mesh: perturb: must be '// &
+      part%box%skew_amplitude = skew_amplitude
+      if (perturb < 0.0_rk .or. perturb >= 0.5_rk) call status%add(trim(where)//': perturb: must be '// &
           'in [0, 0.5) (fraction of the local zone size)')
-      config%box%perturb = perturb
+      part%box%perturb = perturb
     case ('rod')
-      if (box_keys) call status%add('&mesh: type: ''rod'' does not take box keys (x, nx, ...)')
-      if (radius /= UNSET) config%rod%radius = radius
-      if (length /= UNSET) config%rod%length = length
-      if (z0 /= UNSET) config%rod%z0 = z0
-      if (len_trim(sector) > 0) config%rod%sector = to_lower(sector)
-      if (n_core /= -1) config%rod%n_core = n_core
-      if (n_radial /= -1) config%rod%n_radial = n_radial
-      if (n_axial /= -1) config%rod%n_axial = n_axial
-      if (axial_ratio /= UNSET) config%rod%axial_ratio = axial_ratio
-      if (core_fraction /= UNSET) config%rod%core_fraction = core_fraction
+      if (box_keys) call status%add(trim(where)//': type: ''rod'' does not take box keys (x, nx, ...)')
+      if (radius /= UNSET) part%rod%radius = radius
+      if (length /= UNSET) part%rod%length = length
+      if (z0 /= UNSET) part%rod%z0 = z0
+      if (len_trim(sector) > 0) part%rod%sector = to_lower(sector)
+      if (n_core /= -1) part%rod%n_core = n_core
+      if (n_radial /= -1) part%rod%n_radial = n_radial
+      if (n_axial /= -1) part%rod%n_axial = n_axial
+      if (axial_ratio /= UNSET) part%rod%axial_ratio = axial_ratio
+      if (core_fraction /= UNSET) part%rod%core_fraction = core_fraction
     case ('tube')
-      if (box_keys) call status%add('&mesh: type: ''tube'' does not take box keys (x, nx, ...)')
-      if (ri /= UNSET) config%tube%ri = ri
-      if (ro /= UNSET) config%tube%ro = ro
-      if (length /= UNSET) config%tube%length = length
-      if (len_trim(sector) > 0) config%tube%sector = to_lower(sector)
-      if (n_theta /= -1) config%tube%n_theta = n_theta
-      if (n_radial /= -1) config%tube%n_radial = n_radial
-      if (n_axial /= -1) config%tube%n_axial = n_axial
-      if (axial_ratio /= UNSET) config%tube%axial_ratio = axial_ratio
-      if (all(axis /= UNSET)) config%tube%axis = axis
-      if (all(origin /= UNSET)) config%tube%origin = origin
+      if (box_keys) call status%add(trim(where)//': type: ''tube'' does not take box keys (x, nx, ...)')
+      if (ri /= UNSET) part%tube%ri = ri
+      if (ro /= UNSET) part%tube%ro = ro
+      if (length /= UNSET) part%tube%length = length
+      if (len_trim(sector) > 0) part%tube%sector = to_lower(sector)
+      if (n_theta /= -1) part%tube%n_theta = n_theta
+      if (n_radial /= -1) part%tube%n_radial = n_radial
+      if (n_axial /= -1) part%tube%n_axial = n_axial
+      if (axial_ratio /= UNSET) part%tube%axial_ratio = axial_ratio
+      if (all(axis /= UNSET)) part%tube%axis = axis
+      if (all(origin /= UNSET)) part%tube%origin = origin
     case ('shell')
-      if (box_keys) call status%add('&mesh: type: ''shell'' does not take box keys (x, nx, ...)')
-      if (ri /= UNSET) config%shell%ri = ri
-      if (ro /= UNSET) config%shell%ro = ro
-      if (n_patch /= -1) config%shell%n_patch = n_patch
-      if (n_radial /= -1) config%shell%n_radial = n_radial
-      if (radial_ratio /= UNSET) config%shell%radial_ratio = radial_ratio
+      if (box_keys) call status%add(trim(where)//': type: ''shell'' does not take box keys (x, nx, ...)')
+      if (ri /= UNSET) part%shell%ri = ri
+      if (ro /= UNSET) part%shell%ro = ro
+      if (n_patch /= -1) part%shell%n_patch = n_patch
+      if (n_radial /= -1) part%shell%n_radial = n_radial
+      if (radial_ratio /= UNSET) part%shell%radial_ratio = radial_ratio
     case ('gmsh')
-      if (box_keys .or. curved_keys) call status%add('&mesh: type: ''gmsh'' takes only file')
+      if (box_keys .or. curved_keys) call status%add(trim(where)//': type: ''gmsh'' takes only file')
       if (len_trim(file) == 0) then
-        call status%add('&mesh: file: required for type = ''gmsh'' (a .msh file)')
+        call status%add(trim(where)//': file: required for type = ''gmsh'' (a .msh file)')
       else
-        config%mesh_file = file
+        part%mesh_file = file
         if (par_rank() == 0) inquire(file=trim(file), exist=exists)
         call par_bcast(exists)
-        if (.not. exists) call status%add('&mesh: file: '''//trim(file)//''' does not exist')
+        if (.not. exists) call status%add(trim(where)//': file: '''//trim(file)//''' does not exist')
       end if
     case default
-      call status%add('&mesh: type: '''//trim(type)//''' is not a mesh type (valid: box, '// &
+      call status%add(trim(where)//': type: '''//trim(type)//''' is not a mesh type (valid: box, '// &
           'rod, tube, shell, gmsh)')
     end select
 
@@ -552,32 +571,32 @@ contains
       nint = count(zones /= 0)
       npoint = count(points /= UNSET)
       if (nint == 0) then
-        call status%add('&mesh: n'//axis//': required (zones in each interval along '//axis//')')
+        call status%add(trim(where)//': n'//axis//': required (zones in each interval along '//axis//')')
         return
       end if
       if (any(zones(1:nint) < 1) .or. any(zones(nint + 1:) /= 0)) then
-        call status%add('&mesh: n'//axis//': every interval needs >= 1 zone')
+        call status%add(trim(where)//': n'//axis//': every interval needs >= 1 zone')
         return
       end if
       if (npoint /= nint + 1 .or. any(points(1:npoint) == UNSET)) then
-        call status%add('&mesh: '//axis//': needs one more point than n'//axis// &
+        call status%add(trim(where)//': '//axis//': needs one more point than n'//axis// &
             ' has intervals (the interval ends)')
         return
       end if
       do i = 1, nint
         if (.not. (points(i + 1) > points(i))) then
-          call status%add('&mesh: '//axis//': points must increase')
+          call status%add(trim(where)//': '//axis//': points must increase')
           return
         end if
         if (.not. (ratio(i) > 0.0_rk)) then
-          call status%add('&mesh: ratio_'//axis//': must be > 0')
+          call status%add(trim(where)//': ratio_'//axis//': must be > 0')
           return
         end if
       end do
-      config%box%nint(d) = nint
-      config%box%breaks(0:nint, d) = points(1:nint + 1)
-      config%box%zones(1:nint, d) = zones(1:nint)
-      config%box%ratio(1:nint, d) = ratio(1:nint)
+      part%box%nint(d) = nint
+      part%box%breaks(0:nint, d) = points(1:nint + 1)
+      part%box%zones(1:nint, d) = zones(1:nint)
+      part%box%ratio(1:nint, d) = ratio(1:nint)
     end subroutine direction
 
   end subroutine read_mesh
@@ -894,13 +913,13 @@ contains
     type(contact_spec_t), intent(inout) :: pair
     type(status_t), intent(inout) :: status
     character(len=NAME_LEN) :: name, surface_a, surface_b, master
-    character(len=16) :: method
+    character(len=16) :: method, form
     real(rk) :: capture, penetration_warning, search_margin
     integer :: search_every, ios
     character(len=256) :: msg
     character(len=16) :: where
     namelist /contact/ name, surface_a, surface_b, method, master, capture, &
-        penetration_warning, search_margin, search_every
+        penetration_warning, search_margin, search_every, form
 
     write(where, '(a,i0,a)') '&contact(', index, ')'
     name = ''
@@ -912,6 +931,7 @@ contains
     penetration_warning = pair%penetration_warning
     search_margin = pair%search_margin
     search_every = pair%search_every
+    form = ''
     read(sect, nml=contact, iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(trim(where)//': cannot read the group: '//trim(msg))
@@ -941,6 +961,16 @@ contains
           'symmetric and has no master side')
     case default
       call status%add(trim(where)//': master: must be ''a'' or ''b'' (the master side for DAM)')
+    end select
+    select case (to_lower(form))
+    case ('')
+    case ('coordinate', 'velocity', 'combined')
+      pair%form = to_lower(form)
+      if (to_lower(method) == 'dam') call status%add(trim(where)//': form: only DLM has '// &
+          'forms (coordinate, velocity, combined)')
+    case default
+      call status%add(trim(where)//': form: '''//trim(form)//''' is not a DLM form (valid: '// &
+          'coordinate, velocity, combined)')
     end select
     if (.not. (capture >= 0.0_rk)) call status%add(trim(where)//': capture: must be >= 0')
     if (.not. (penetration_warning > 0.0_rk)) call status%add(trim(where)// &

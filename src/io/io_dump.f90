@@ -140,6 +140,7 @@ contains
     call h5_write_attr_real(file, '/run', 'wall_seconds', info%wall_seconds, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_write_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
+    call h5_write_attr_real(file, '/run', 'contact_work', state%contact_work, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_write_attr_real(file, '/run', 'energy_initial', state%energy_initial, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -418,6 +419,7 @@ contains
     call h5_read_attr_real(file, '/restart', 'dt_previous', state%dt_previous, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_read_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
+    call h5_read_attr_real(file, '/run', 'contact_work', state%contact_work, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_read_attr_real(file, '/run', 'energy_initial', state%energy_initial, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e

@@ -5,7 +5,7 @@ module mesh_global
   use core_status, only: status_t
   implicit none
   private
-  public :: box_spec_t, mesh_make_box, interval_points
+  public :: box_spec_t, mesh_make_box, interval_points, mesh_append
 
   integer, parameter, public :: MAX_INTERVALS = 16
   integer, parameter, public :: NAME_LEN = 32
@@ -223,5 +223,107 @@ contains
     end function face_of_set
 
   end subroutine mesh_make_box
+
+  !> Append the mesh part to mesh (nodes, zones and face sets renumbered after
+  !> those already there; parts stay disconnected, sharing no node). Each face
+  !> set of the part joins the set of the same name (created if new), so that
+  !> e.g. 'ymin' names the y = min faces of every part; when prefix is given
+  !> the part's faces also form the set prefix_name (e.g. 'bar1_xmax'), which
+  !> is how a contact surface names one body. Zone blocks are kept.
+  subroutine mesh_append(mesh, part, prefix)
+    type(global_mesh_t), intent(inout) :: mesh
+    type(global_mesh_t), intent(in) :: part
+    character(len=*), intent(in) :: prefix !< '' = no prefixed sets
+    character(len=NAME_LEN), allocatable :: names(:)
+    integer, allocatable :: start(:), fill(:)
+    integer(ik), allocatable :: zone(:), face(:)
+    real(rk), allocatable :: x(:, :)
+    integer(ik), allocatable :: conn(:, :), block(:)
+    integer :: nname, k, j, i, nface, p, new_set
+
+    ! Set names of the result: mesh's, then the part's new plain names, then
+    ! its prefixed names.
+    nname = mesh%nset
+    allocate(names(mesh%nset + 2 * part%nset))
+    if (mesh%nset > 0) names(:mesh%nset) = mesh%set_name(:mesh%nset)
+    do k = 1, part%nset
+      if (.not. any(names(:nname) == part%set_name(k))) then
+        nname = nname + 1
+        names(nname) = part%set_name(k)
+      end if
+    end do
+    if (len_trim(prefix) > 0) then
+      do k = 1, part%nset
+        nname = nname + 1
+        names(nname) = trim(prefix) // '_' // trim(part%set_name(k))
+      end do
+    end if
+
+    ! Count faces per result set, then fill (old faces first, in order).
+    allocate(start(nname + 1), fill(nname))
+    start = 0
+    do k = 1, mesh%nset
+      start(k + 1) = mesh%set_start(k + 1) - mesh%set_start(k)
+    end do
+    do k = 1, part%nset
+      nface = part%set_start(k + 1) - part%set_start(k)
+      j = findloc(names(:nname), part%set_name(k), dim=1)
+      start(j + 1) = start(j + 1) + nface
+      if (len_trim(prefix) > 0) then
+        j = findloc(names(:nname), trim(prefix) // '_' // trim(part%set_name(k)), dim=1)
+        start(j + 1) = start(j + 1) + nface
+      end if
+    end do
+    start(1) = 1
+    do k = 1, nname
+      start(k + 1) = start(k + 1) + start(k)
+    end do
+    allocate(zone(start(nname + 1) - 1), face(start(nname + 1) - 1))
+    fill = start(:nname)
+    do k = 1, mesh%nset
+      do i = mesh%set_start(k), mesh%set_start(k + 1) - 1
+        zone(fill(k)) = mesh%set_zone(i)
+        face(fill(k)) = mesh%set_face(i)
+        fill(k) = fill(k) + 1
+      end do
+    end do
+    do k = 1, part%nset
+      do p = 1, 2
+        if (p == 1) then
+          new_set = findloc(names(:nname), part%set_name(k), dim=1)
+        else
+          if (len_trim(prefix) == 0) exit
+          new_set = findloc(names(:nname), trim(prefix) // '_' // trim(part%set_name(k)), dim=1)
+        end if
+        do i = part%set_start(k), part%set_start(k + 1) - 1
+          zone(fill(new_set)) = part%set_zone(i) + int(mesh%nzone, ik)
+          face(fill(new_set)) = part%set_face(i)
+          fill(new_set) = fill(new_set) + 1
+        end do
+      end do
+    end do
+
+    allocate(x(3, mesh%nnode + part%nnode), conn(8, mesh%nzone + part%nzone))
+    allocate(block(mesh%nzone + part%nzone))
+    if (mesh%nnode > 0) x(:, :mesh%nnode) = mesh%coordinates
+    x(:, mesh%nnode + 1:) = part%coordinates
+    if (mesh%nzone > 0) then
+      conn(:, :mesh%nzone) = mesh%connectivity
+      block(:mesh%nzone) = mesh%zone_block
+    end if
+    conn(:, mesh%nzone + 1:) = part%connectivity + int(mesh%nnode, ik)
+    block(mesh%nzone + 1:) = part%zone_block
+    call move_alloc(x, mesh%coordinates)
+    call move_alloc(conn, mesh%connectivity)
+    call move_alloc(block, mesh%zone_block)
+    mesh%nnode = mesh%nnode + part%nnode
+    mesh%nzone = mesh%nzone + part%nzone
+    mesh%nset = nname
+    names = names(:nname)
+    call move_alloc(names, mesh%set_name)
+    call move_alloc(start, mesh%set_start)
+    call move_alloc(zone, mesh%set_zone)
+    call move_alloc(face, mesh%set_face)
+  end subroutine mesh_append
 
 end module mesh_global

@@ -155,9 +155,22 @@ def build_cases():
     c.append(Case("contact_unknown_surface",
                   append("&contact surface_a = 'xmax', surface_b = 'xlow', method = 'dlm' /\n"),
                   ["&contact(1): surface_b: 'xlow' is not a face set of the mesh"]))
-    c.append(Case("contact_not_yet_runnable",
-                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam' /\n"),
-                  ["&contact: method: contact enforcement (DAM, DLM) is not implemented"]))
+    c.append(Case("contact_form_unknown",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
+                         "form = 'penalty' /\n"),
+                  ["&contact(1): form: 'penalty' is not a DLM form"]))
+    c.append(Case("contact_form_for_dam",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam', "
+                         "form = 'velocity' /\n"),
+                  ["&contact(1): form: only DLM has forms"]))
+    c.append(Case("mesh_parts_need_names",
+                  append("&mesh x = 2.0, 3.0, nx = 2, y = 0.0, 1.0, ny = 1, z = 0.0, 1.0, "
+                         "nz = 1 /\n"),
+                  ["&mesh(1): name: required when the deck has several &mesh parts",
+                   "&mesh(2): name: required"]))
+    c.append(Case("mesh_part_unknown_block",
+                  sub("&mesh", "&mesh block = 'plate',"),
+                  ["&mesh: block: 'plate' is not the name of a &block"]))
     c.append(Case("unknown_key_other_group",
                   sub("name = 'gas', eos", "name = 'gas', gama = 1.4, eos"),
                   ["&material: gama: unknown key", "valid keys: name, eos, gamma"]))

@@ -350,6 +350,137 @@ def cmd_rebound(args):
           % (t_end, args.target, 100 * args.tol), abs(t_end / args.target - 1) <= args.tol)
 
 
+def cmd_bars(args):
+    """Two elastic bars meeting through a contact pair (PROBLEMS.md C).
+
+    Left bar (block 1) at --v-left, right bar (block 2) at --v-right, 1D strain.
+    Criteria (each within --tol): contact lasts --duration (from the pair's
+    active column of the history); the interface stress (pair force / --area)
+    over the middle half of the contact equals --stress; the interface nodes
+    move at the impedance-matched velocity --v-interface during contact
+    (within --tol of |v_left - v_right|: the velocity never reverses); after
+    separation each bar's mean velocity is --final-left / --final-right."""
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "bars")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    with open(os.path.join(wd, "history.txt")) as f:
+        header = f.readline().split()[1:]
+        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+    t = rows[:, header.index("time")]
+    dt = rows[:, header.index("dt")]
+    active = rows[:, header.index(args.pair + "_active")] > 0
+    force = rows[:, header.index(args.pair + "_force")]
+    pen = rows[:, header.index(args.pair + "_pen_max")]
+    on = np.where(active)[0]
+    check("contact found", on.size > 0)
+    if not on.size:
+        return
+    t_start = t[on[0]] - dt[on[0]]
+    t_stop = t[on[-1]]
+    duration = t_stop - t_start
+    gaps = np.where(np.diff(on) > 1)[0]
+    check("contact never opens while the bars are in contact (%d interruptions)" % gaps.size,
+          gaps.size == 0)
+    if args.duration > 0:
+        check("contact duration %.5f vs %.5f within %.1f%%" % (duration, args.duration,
+              100 * args.tol), abs(duration / args.duration - 1) <= args.tol)
+    mid = (t > t_start + 0.25 * duration) & (t < t_start + 0.75 * duration)
+    stress = force[mid] / args.area
+    check("interface stress %.6e (range %.4e..%.4e) vs %.6e within %.1f%%"
+          % (stress.mean(), stress.min(), stress.max(), args.stress, 100 * args.tol),
+          abs(stress.mean() / args.stress - 1) <= args.tol)
+    print("largest penetration %.3e (bar length units)" % pen.max())
+    # Interface velocity from the dumps taken during contact.
+    dumps = sorted(glob.glob(os.path.join(wd, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
+    dv = abs(args.v_left - args.v_right)
+    worst = 0.0
+    used = 0
+    final = None
+    for path in dumps:
+        d = dump.load(path)
+        time = float(d["attrs"]["time"])
+        conn = d["connectivity"]
+        left_nodes = np.unique(conn[d["block"] == 1].ravel())
+        right_nodes = np.unique(conn[d["block"] == 2].ravel())
+        final = (d, left_nodes, right_nodes)
+        if not (t_start + 0.1 * duration < time < t_start + 0.9 * duration):
+            continue
+        x = d["coordinates"][:, 0]
+        vx = d["node_velocity"][:, 0]
+        face_l = left_nodes[np.isclose(x[left_nodes], x[left_nodes].max(), atol=1e-6)]
+        face_r = right_nodes[np.isclose(x[right_nodes], x[right_nodes].min(), atol=1e-6)]
+        for face in (face_l, face_r):
+            worst = max(worst, np.abs(vx[face] - args.v_interface).max())
+        used += 1
+    check("interface velocity within %.1f%% of |v_left - v_right| of %.4e over %d dumps "
+          "(worst %.3e)" % (100 * args.tol, args.v_interface, used, worst),
+          used >= 3 and worst <= args.tol * dv)
+    if final is not None and args.final_left is not None:
+        d, ln, rn = final
+        m = d["node_mass"]
+        vx = d["node_velocity"][:, 0]
+        # interface nodes belong to one bar each (parts share no node)
+        vl = (m[ln] * vx[ln]).sum() / m[ln].sum()
+        vr = (m[rn] * vx[rn]).sum() / m[rn].sum()
+        check("left bar leaves at %.5e vs %.5e within %.1f%% of |v|" % (vl, args.final_left,
+              100 * args.tol), abs(vl - args.final_left) <= args.tol * dv / 2)
+        check("right bar leaves at %.5e vs %.5e within %.1f%% of |v|" % (vr, args.final_right,
+              100 * args.tol), abs(vr - args.final_right) <= args.tol * dv / 2)
+    if args.momentum_tol > 0 and dumps:
+        d0 = dump.load(dumps[0])
+        scale = (d0["node_mass"] * np.abs(d0["node_velocity"][:, 0])).sum()
+        p = rows[:, header.index("momentum_x")]
+        drift = np.abs(p - p[0]).max() / scale
+        check("total momentum conserved: largest drift %.3e of sum m|v| (tolerance %.1e)"
+              % (drift, args.momentum_tol), drift <= args.momentum_tol)
+
+
+def cmd_mirror(args):
+    """Mirror test (PROBLEMS.md C): --deck (a body and its mirror image joined
+    by contact, the body's part first) against --reference (the body on the
+    rigid unilateral wall): the body's node positions at the end agree to
+    --tol of its size, and the image stays the mirror of the body."""
+    import numpy as np
+    import dump
+    wd_ref = os.path.join(args.workdir, "wall")
+    wd = os.path.join(args.workdir, "mirror")
+    code, out, err = run(args, args.np, wd_ref, args.reference)
+    check("wall run exits 0", code == 0, err[-2000:])
+    code2, out, err = run(args, args.np, wd, args.deck)
+    check("mirror run exits 0", code2 == 0, err[-2000:])
+    if code or code2:
+        return
+    ref = dump.load(final_dump(wd_ref))
+    mir = dump.load(final_dump(wd))
+    check("both runs end at the same time", float(ref["attrs"]["time"]) ==
+          float(mir["attrs"]["time"]))
+    x0 = ref["coordinates"]
+    n = x0.shape[0]
+    size = np.linalg.norm(x0.max(axis=0) - x0.min(axis=0))
+    diff = np.abs(mir["coordinates"][:n] - x0).max() / size
+    check("body node positions: largest difference %.3e of the body size (tolerance %.1e)"
+          % (diff, args.tol), diff <= args.tol)
+    image = mir["coordinates"][n:].copy()
+    axis = "xyz".index(args.axis)
+    image[:, axis] *= -1.0
+    body = mir["coordinates"][:n]
+    # the image's nodes, mirrored, are the body's nodes (match by nearest point)
+    key = lambda p: np.lexsort((np.round(p[:, 2] / size, 6), np.round(p[:, 1] / size, 6),
+                                np.round(p[:, 0] / size, 6)))
+    if image.shape == body.shape:
+        a = body[key(body)]
+        b = image[key(image)]
+        sym = np.abs(a - b).max() / size
+        check("the image stays the mirror of the body: %.3e of the size" % sym, sym <= args.tol)
+    moved = np.abs(x0 - dump.load(sorted(glob.glob(os.path.join(
+        wd_ref, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))[0])["coordinates"]).max() / size
+    print("largest node displacement of the body: %.3e of its size" % moved)
+
+
 def cmd_twowave(args):
     """Elastic-plastic piston problem: elastic precursor and plastic wave.
 
@@ -473,7 +604,7 @@ def main():
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
                                         "convergence", "window", "interface", "stability",
                                         "wavefront", "rebound", "twowave", "shell_stop",
-                                        "stopfile"])
+                                        "stopfile", "bars", "mirror"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -501,9 +632,22 @@ def main():
     p.add_argument("--c0", type=float)
     p.add_argument("--s1", type=float)
     p.add_argument("--rho0", type=float)
+    p.add_argument("--reference", help="reference deck (mirror)")
+    p.add_argument("--pair", default="mid", help="contact pair name (bars)")
+    p.add_argument("--duration", type=float, default=0.0)
+    p.add_argument("--area", type=float, default=1.0)
+    p.add_argument("--stress", type=float)
+    p.add_argument("--v-left", type=float, default=0.0)
+    p.add_argument("--v-right", type=float, default=0.0)
+    p.add_argument("--v-interface", type=float, default=0.0)
+    p.add_argument("--final-left", type=float)
+    p.add_argument("--final-right", type=float)
+    p.add_argument("--momentum-tol", type=float, default=0.0)
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
     args = p.parse_args()
     args.deck = os.path.abspath(args.deck)
+    if args.reference:
+        args.reference = os.path.abspath(args.reference)
     args.workdir = os.path.abspath(args.workdir)
     args.compare_args = args.compare_args.split()
     args.exe = os.path.abspath(args.exe)

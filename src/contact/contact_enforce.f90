@@ -1,0 +1,807 @@
+!> Contact enforcement: DAM (discrete accurate matching, master-slave) and DLM
+!> (discrete Lagrangian multiplier, symmetric) of Jia, Gong, Zhang & Liu
+!> (J. Comput. Phys. 267 (2014) 247-285), as written in CONTACT.md sections 3-4.
+!> This is the narrow interface between the hydro state and contact.
+!>
+!> Where it sits. In each stage, after the hydro forces f of the stage are
+!> known and before v = v^n + h (f + fc)/m (h = dt/2 in the predictor, dt in
+!> the corrector): contact_apply returns the contact force fc of every owned
+!> contact node, added to the node force, so the boundary conditions
+!> re-imposed by the velocity update come after it. CONTACT.md 4b puts contact
+!> in the corrector only; the rigid wall acts in both stages, and a contact
+!> that skips the predictor lets the half-step geometry interpenetrate, so the
+!> contact pressure lags half a step and the mirror test fails (2e-3 of the
+!> body size on a Taylor rod). The predictor call does no search; only the
+!> corrector's forces do work and give the diagnostics.
+!> Both methods are expressed as a contact force: DLM's pair forces directly,
+!> DAM's corrected velocities v' as fc = m (v' - v^n)/dt - f. The work of the
+!> contact forces over the step (trapezoid velocity) is the contact work of
+!> the energy balance.
+!>
+!> Replicated contact (until the RCB decomposition): the positions x^n,
+!> velocities v^n and forces f of all contact nodes are gathered from their
+!> owners (one sum-reduction of exact zeros and one owner value, so bitwise
+!> the owner's value on every rank); every rank then runs the same search and
+!> enforcement in the same order and keeps the results of its owned nodes.
+!> Results are bitwise independent of the rank count.
+!>
+!> Contact index space. The nodes of all contact surfaces, sorted by global
+!> id, are numbered 1..ncn; the surfaces are rebuilt in this numbering, so all
+!> contact arrays are (3, ncn) and the order of every loop is fixed by global
+!> ids.
+!>
+!> Closing condition (both methods, CONTACT.md sections 3.7 and 4). A pair is
+!> enforced when the free motion (hydro forces only) would close its gap by
+!> the end of the step: pen_free = pen + dt w + dt^2/2 (ah - ad) > 0, w the
+!> approach velocity and ah - ad the relative free acceleration along the
+!> normal. Otherwise the pair is released (tension, or opening faster than the
+!> other side follows). The same rule gives release and re-contact in DAM and
+!> DLM.
+!>
+!> DLM forms (deck key `form`): with mu = Mh Md/(Mh + Md),
+!>   coordinate: fh = mu (Fd/Md - Fh/Mh + (vd - vh)/(dt/2) - pen/(dt^2/2)),
+!>   velocity:   fh = mu (Fd/Md - Fh/Mh + (vd - vh)/dt), gated by pen_free > 0,
+!>   combined:   the velocity form with a target approach velocity at t^n+1 of
+!>               -r/dt instead of 0, r = max(pen + dt w/2, 0) the penetration
+!>               the velocity form would leave: half of r is removed per step
+!>               by a force pair (momentum exact), without the rebound of the
+!>               coordinate form.
+!> fh = min(fh, 0) in every form.
+module contact_enforce
+  use core_kinds, only: rk, ik, i8
+  use core_status, only: status_t
+  use mesh_global, only: global_mesh_t, NAME_LEN
+  use mesh_local, only: mesh_t
+  use contact_geometry, only: segment_facets, corner_areas, quad_unit_normal, &
+      triangle_unit_normal, triangle_overlap, SEGMENT_FACET_COUNT, FACET_CORNER
+  use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
+      surface_update_edges, surface_node_index
+  use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
+      search_interval, KIND_NONE
+  use contact_rbf, only: rbf_weights
+  use parallel_env, only: par_sum_array
+  implicit none
+  private
+  public :: contact_setup, contact_apply, contact_work_update, contact_diagnostics
+
+  integer, parameter, public :: METHOD_DAM = 1, METHOD_DLM = 2
+  integer, parameter, public :: FORM_COORDINATE = 1, FORM_VELOCITY = 2, FORM_COMBINED = 3
+  !> Diagnostic columns per contact pair.
+  !> active: enforced pairs (DLM facet pairs, DAM slave nodes); force: total
+  !> normal force; pen_max, pen_rms: largest and RMS penetration at t^n;
+  !> released: nodes in contact last step and not now; dmom: momentum the
+  !> contact forces added over the step (zero to round-off for DLM).
+  integer, parameter, public :: CONTACT_DIAG_COUNT = 8
+  character(len=*), parameter, public :: CONTACT_DIAG_NAMES(CONTACT_DIAG_COUNT) = [ &
+      character(len=12) :: 'active', 'force', 'pen_max', 'pen_rms', 'released', &
+      'dmom_x', 'dmom_y', 'dmom_z']
+  !> Facets facing each other: n_a . n_b below this.
+  real(rk), parameter :: FACING = -0.2_rk
+  !> Overlaps smaller than this fraction of the facet area are ignored.
+  real(rk), parameter :: AREA_TOLERANCE = 1.0e-12_rk
+
+  !> One &contact group as read from the deck.
+  type, public :: contact_spec_t
+    character(len=NAME_LEN) :: name = ''
+    character(len=NAME_LEN) :: surface_a = '' !< face set
+    character(len=NAME_LEN) :: surface_b = '' !< face set (= surface_a: self-contact)
+    character(len=8) :: method = '' !< 'dam' or 'dlm'
+    character(len=1) :: master = 'b' !< DAM master side
+    character(len=12) :: form = 'combined' !< DLM: coordinate, velocity, combined
+    real(rk) :: capture = 0.0_rk !< largest open gap treated as contact (0 = automatic)
+    real(rk) :: penetration_warning = huge(1.0_rk) !< warn above this penetration
+    real(rk) :: search_margin = 0.0_rk !< territory margin (0 = automatic)
+    integer :: search_every = 0 !< cycles between global searches (0 = automatic)
+  end type contact_spec_t
+
+  !> One contact pair (interface) in contact-index space.
+  type, public :: interface_t
+    type(contact_spec_t), public :: spec
+    integer :: method = METHOD_DLM
+    integer :: form = FORM_COMBINED
+    logical :: self = .false.
+    type(contact_surface_t) :: a, b !< b = master for DAM
+    real(rk) :: size = 0.0_rk !< median segment size of both surfaces
+    real(rk) :: margin = 0.0_rk !< territory margin in use
+    integer(i8) :: next_search = 0 !< cycle of the next global search
+    integer, allocatable :: segment_pairs(:, :) !< DLM: (2, n) segment of a, of b
+    integer, allocatable :: test_pairs(:, :) !< DAM: (2, n) slave node, master segment
+    logical, allocatable :: was_active(:) !< (ncn) node carried contact force last step
+    real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
+    logical, public :: warned = .false. !< the penetration warning was given
+  end type interface_t
+
+  !> All contact of a run.
+  type, public :: contact_t
+    integer :: npair = 0
+    type(interface_t), allocatable :: pairs(:)
+    integer :: ncn = 0 !< contact nodes
+    integer(i8), allocatable :: gid(:) !< (ncn) their global ids, ascending
+    real(rk), allocatable :: mass(:) !< (ncn) nodal masses (fixed)
+    integer :: nown = 0 !< owned contact nodes of this rank
+    integer, allocatable :: own_contact(:) !< (nown) contact index
+    integer, allocatable :: own_local(:) !< (nown) local node index
+    real(rk), allocatable :: x(:, :), v(:, :), f(:, :) !< (3, ncn) replicated x^n, v^n, f
+    real(rk), allocatable :: fc(:, :) !< (3, ncn) contact force of the step
+    integer, allocatable :: pair_of_node(:) !< scratch
+    real(rk) :: search_seconds = 0.0_rk, enforce_seconds = 0.0_rk
+  end type contact_t
+
+contains
+
+  !> Build the contact surfaces in contact-index space, the owned-node map and
+  !> the nodal masses. Problems go to status (group, key, reason).
+  subroutine contact_setup(specs, global, mesh, node_mass, ct, status)
+    type(contact_spec_t), intent(in) :: specs(:)
+    type(global_mesh_t), intent(in) :: global
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: node_mass(:) !< (nnode local) nodal masses
+    type(contact_t), intent(inout) :: ct
+    type(status_t), intent(inout) :: status
+    type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
+    integer(i8), allocatable :: all(:)
+    real(rk), allocatable :: xc(:, :), packed(:, :)
+    integer :: k, n, i, count_all
+    character(len=16) :: where
+    character(len=NAME_LEN) :: master_set, slave_set
+
+    ct%npair = size(specs)
+    allocate(ct%pairs(ct%npair), raw_a(ct%npair), raw_b(ct%npair))
+    if (ct%npair == 0) return
+    do k = 1, ct%npair
+      write(where, '(a,i0,a)') '&contact(', k, ')'
+      associate(p => ct%pairs(k))
+        p%spec = specs(k)
+        p%self = specs(k)%surface_a == specs(k)%surface_b
+        select case (specs(k)%method)
+        case ('dam')
+          p%method = METHOD_DAM
+        case default
+          p%method = METHOD_DLM
+        end select
+        select case (specs(k)%form)
+        case ('coordinate')
+          p%form = FORM_COORDINATE
+        case ('velocity')
+          p%form = FORM_VELOCITY
+        case default
+          p%form = FORM_COMBINED
+        end select
+        ! For DAM, b is the master side.
+        slave_set = specs(k)%surface_a
+        master_set = specs(k)%surface_b
+        if (p%method == METHOD_DAM .and. specs(k)%master == 'a') then
+          slave_set = specs(k)%surface_b
+          master_set = specs(k)%surface_a
+        end if
+        call surface_build(global, [slave_set], raw_a(k), status)
+        call surface_build(global, [master_set], raw_b(k), status)
+      end associate
+    end do
+    if (.not. status%ok()) return
+
+    ! Contact nodes: every node of every surface, by global id.
+    count_all = 0
+    do k = 1, ct%npair
+      count_all = count_all + raw_a(k)%nnode + raw_b(k)%nnode
+    end do
+    allocate(all(count_all))
+    count_all = 0
+    do k = 1, ct%npair
+      all(count_all + 1:count_all + raw_a(k)%nnode) = int(raw_a(k)%nodes, i8)
+      count_all = count_all + raw_a(k)%nnode
+      all(count_all + 1:count_all + raw_b(k)%nnode) = int(raw_b(k)%nodes, i8)
+      count_all = count_all + raw_b(k)%nnode
+    end do
+    call sort_unique(all)
+    ct%ncn = size(all)
+    call move_alloc(all, ct%gid)
+    allocate(xc(3, ct%ncn))
+    xc = global%coordinates(:, ct%gid)
+    do k = 1, ct%npair
+      call renumber(raw_a(k), ct%pairs(k)%a)
+      call renumber(raw_b(k), ct%pairs(k)%b)
+      ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%a) + &
+          median_size(xc, ct%pairs(k)%b))
+      allocate(ct%pairs(k)%was_active(ct%ncn))
+      ct%pairs(k)%was_active = .false.
+    end do
+
+    ! Owned contact nodes of this rank.
+    ct%nown = 0
+    allocate(ct%own_contact(mesh%nnode_owned), ct%own_local(mesh%nnode_owned))
+    do n = 1, mesh%nnode_owned
+      i = find_i8(ct%gid, mesh%node_gid(n))
+      if (i == 0) cycle
+      ct%nown = ct%nown + 1
+      ct%own_contact(ct%nown) = i
+      ct%own_local(ct%nown) = n
+    end do
+    allocate(packed(1, ct%ncn))
+    packed = 0.0_rk
+    do i = 1, ct%nown
+      packed(1, ct%own_contact(i)) = node_mass(ct%own_local(i))
+    end do
+    call par_sum_array(packed(1, :))
+    ct%mass = packed(1, :)
+    allocate(ct%x(3, ct%ncn), ct%v(3, ct%ncn), ct%f(3, ct%ncn), ct%fc(3, ct%ncn))
+
+  contains
+
+    subroutine renumber(raw, surf)
+      type(contact_surface_t), intent(in) :: raw
+      type(contact_surface_t), intent(inout) :: surf
+      integer(ik), allocatable :: segments(:, :)
+      integer :: s, c
+      allocate(segments(4, raw%nseg))
+      do s = 1, raw%nseg
+        do c = 1, 4
+          segments(c, s) = int(find_i8(ct%gid, int(raw%segments(c, s), i8)), ik)
+        end do
+      end do
+      call surface_from_segments(segments, raw%segment_id, xc, surf)
+    end subroutine renumber
+
+  end subroutine contact_setup
+
+  !> Median of the longest segment edge over a surface.
+  function median_size(x, surf) result(h)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    real(rk) :: h
+    real(rk), allocatable :: sizes(:)
+    integer :: s, c
+    h = 0.0_rk
+    if (surf%nseg == 0) return
+    allocate(sizes(surf%nseg))
+    do s = 1, surf%nseg
+      sizes(s) = 0.0_rk
+      do c = 1, 4
+        sizes(s) = max(sizes(s), norm2(x(:, surf%segments(mod(c, 4) + 1, s)) - &
+            x(:, surf%segments(c, s))))
+      end do
+    end do
+    call sort_reals(sizes)
+    h = sizes((surf%nseg + 1) / 2)
+  end function median_size
+
+  !> Contact forces of the step for the owned nodes: force(:, local) += fc.
+  !> x_old, v_old: positions and velocities at t^n; force: hydro corrector force.
+  subroutine contact_apply(ct, x_old, v_old, force, dt, cycle, wall_clock)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x_old(:, :), v_old(:, :)
+    real(rk), intent(inout) :: force(:, :)
+    real(rk), intent(in) :: dt
+    integer(i8), intent(in) :: cycle !< the cycle being computed (for search scheduling)
+    interface
+      function wall_clock() result(t)
+        import :: rk
+        real(rk) :: t
+      end function wall_clock
+    end interface
+    real(rk), allocatable :: packed(:)
+    real(rk) :: t0, t1
+    integer :: i, k, c
+
+    if (ct%npair == 0) return
+    ! Gather x^n, v^n and f of all contact nodes (replicated).
+    allocate(packed(9 * ct%ncn))
+    packed = 0.0_rk
+    do i = 1, ct%nown
+      c = 9 * (ct%own_contact(i) - 1)
+      packed(c + 1:c + 3) = x_old(:, ct%own_local(i))
+      packed(c + 4:c + 6) = v_old(:, ct%own_local(i))
+      packed(c + 7:c + 9) = force(:, ct%own_local(i))
+    end do
+    call par_sum_array(packed)
+    do c = 1, ct%ncn
+      ct%x(:, c) = packed(9 * c - 8:9 * c - 6)
+      ct%v(:, c) = packed(9 * c - 5:9 * c - 3)
+      ct%f(:, c) = packed(9 * c - 2:9 * c)
+    end do
+    ct%fc = 0.0_rk
+
+    do k = 1, ct%npair
+      t0 = wall_clock()
+      call search_if_due(ct, ct%pairs(k), dt, cycle)
+      t1 = wall_clock()
+      ct%search_seconds = ct%search_seconds + (t1 - t0)
+      select case (ct%pairs(k)%method)
+      case (METHOD_DLM)
+        call dlm_step(ct, ct%pairs(k), dt)
+      case (METHOD_DAM)
+        call dam_step(ct, ct%pairs(k), dt)
+      end select
+      ct%enforce_seconds = ct%enforce_seconds + (wall_clock() - t1)
+    end do
+
+    do i = 1, ct%nown
+      force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + ct%fc(:, ct%own_contact(i))
+    end do
+  end subroutine contact_apply
+
+  !> Global search when due: margin and interval from the relative speed.
+  subroutine search_if_due(ct, p, dt, cycle)
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    real(rk), intent(in) :: dt
+    integer(i8), intent(in) :: cycle
+    real(rk) :: speed
+    integer :: every, i
+    if (cycle < p%next_search .and. allocated(p%segment_pairs)) return
+    p%margin = p%spec%search_margin
+    if (.not. p%margin > 0.0_rk) p%margin = 0.5_rk * p%size
+    speed = 0.0_rk
+    do i = 1, ct%ncn
+      speed = max(speed, norm2(ct%v(:, i)))
+    end do
+    speed = 2.0_rk * speed
+    every = p%spec%search_every
+    if (every == 0) every = search_interval(p%margin, capture_of(p, speed, dt), speed, dt, &
+        1.2_rk, 50)
+    p%next_search = cycle + int(every, i8)
+    call surface_update_edges(p%b, ct%x)
+    if (p%self) call surface_update_edges(p%a, ct%x)
+    call segment_pair_search(ct%x, p%a, p%b, p%self, p%margin, p%segment_pairs)
+    if (p%method == METHOD_DAM) call bucket_search(ct%x, p%a, p%b, p%self, p%margin, &
+        p%test_pairs)
+  end subroutine search_if_due
+
+  !> Capture tolerance: the deck's, or twice the closing distance of one step.
+  pure real(rk) function capture_of(p, speed, dt) result(capture)
+    type(interface_t), intent(in) :: p
+    real(rk), intent(in) :: speed, dt
+    capture = p%spec%capture
+    if (.not. capture > 0.0_rk) capture = max(2.0_rk * speed * dt, 1.0e-3_rk * p%size)
+  end function capture_of
+
+  !> Nodal (dual-cell) areas of a surface's nodes, indexed by contact index.
+  subroutine nodal_areas(x, surf, area)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    real(rk), intent(inout) :: area(:) !< (ncn), zeroed here on the surface nodes
+    real(rk) :: corner(4)
+    integer :: s, c
+    do s = 1, surf%nseg
+      area(surf%segments(:, s)) = 0.0_rk
+    end do
+    do s = 1, surf%nseg
+      call corner_areas(x(:, surf%segments(:, s)), corner)
+      do c = 1, 4
+        area(surf%segments(c, s)) = area(surf%segments(c, s)) + corner(c)
+      end do
+    end do
+  end subroutine nodal_areas
+
+  !> DLM: every overlapping facet pair of facing segments is a 1D contact pair.
+  subroutine dlm_step(ct, p, dt)
+    type(contact_t), intent(inout) :: ct
+    type(interface_t), intent(inout) :: p
+    real(rk), intent(in) :: dt
+    real(rk), allocatable :: sp_a(:), sp_b(:)
+    real(rk) :: fa(3, 3, SEGMENT_FACET_COUNT), fb(3, 3, SEGMENT_FACET_COUNT)
+    real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, nh(3), nd(3)
+    real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, pen_free, w, target, sum_force, pen_max
+    real(rk) :: pen_sq, momentum(3), area_sum
+    integer :: m, sa, sb, i, j, nodeh, noded, active, released, na_pen
+    logical :: a_hits
+    logical, allocatable :: active_node(:)
+
+    allocate(sp_a(ct%ncn), sp_b(ct%ncn), active_node(ct%ncn))
+    sp_a = 0.0_rk
+    sp_b = 0.0_rk
+    active_node = .false.
+    call nodal_areas(ct%x, p%a, sp_a)
+    call nodal_areas(ct%x, p%b, sp_b)
+    active = 0
+    sum_force = 0.0_rk
+    pen_max = 0.0_rk
+    pen_sq = 0.0_rk
+    area_sum = 0.0_rk
+    na_pen = 0
+    momentum = 0.0_rk
+    do m = 1, size(p%segment_pairs, 2)
+      sa = p%segment_pairs(1, m)
+      sb = p%segment_pairs(2, m)
+      na = quad_unit_normal(ct%x(:, p%a%segments(:, sa)))
+      nb = quad_unit_normal(ct%x(:, p%b%segments(:, sb)))
+      if (.not. dot_product(na, nb) < FACING) cycle
+      ! Hitting side: surface a, or in self-contact the lower segment id.
+      a_hits = .true.
+      if (p%self) a_hits = p%a%segment_id(sa) < p%b%segment_id(sb)
+      if (a_hits) then
+        nrm = na - nb
+      else
+        nrm = nb - na
+      end if
+      nrm = nrm / norm2(nrm)
+      call segment_facets(ct%x(:, p%a%segments(:, sa)), fa)
+      call segment_facets(ct%x(:, p%b%segments(:, sb)), fb)
+      do i = 1, SEGMENT_FACET_COUNT
+        do j = 1, SEGMENT_FACET_COUNT
+          if (a_hits) then
+            call triangle_overlap(fa(:, :, i), fb(:, :, j), nrm, s0, centroid)
+          else
+            call triangle_overlap(fb(:, :, j), fa(:, :, i), nrm, s0, centroid)
+          end if
+          if (.not. s0 > AREA_TOLERANCE * p%size**2) cycle
+          if (a_hits) then
+            nodeh = p%a%segments(FACET_CORNER(i), sa)
+            noded = p%b%segments(FACET_CORNER(j), sb)
+            nh = triangle_unit_normal(fa(:, :, i))
+            nd = triangle_unit_normal(fb(:, :, j))
+            pen = plane_offset(fa(:, 1, i), nh, centroid, nrm) - &
+                plane_offset(fb(:, 1, j), nd, centroid, nrm)
+            mh = ct%mass(nodeh) * s0 / sp_a(nodeh)
+            md = ct%mass(noded) * s0 / sp_b(noded)
+            fh_ = dot_product(ct%f(:, nodeh), nrm) * s0 / sp_a(nodeh)
+            fd_ = dot_product(ct%f(:, noded), nrm) * s0 / sp_b(noded)
+          else
+            nodeh = p%b%segments(FACET_CORNER(j), sb)
+            noded = p%a%segments(FACET_CORNER(i), sa)
+            nh = triangle_unit_normal(fb(:, :, j))
+            nd = triangle_unit_normal(fa(:, :, i))
+            pen = plane_offset(fb(:, 1, j), nh, centroid, nrm) - &
+                plane_offset(fa(:, 1, i), nd, centroid, nrm)
+            mh = ct%mass(nodeh) * s0 / sp_b(nodeh)
+            md = ct%mass(noded) * s0 / sp_a(noded)
+            fh_ = dot_product(ct%f(:, nodeh), nrm) * s0 / sp_b(nodeh)
+            fd_ = dot_product(ct%f(:, noded), nrm) * s0 / sp_a(noded)
+          end if
+          ! Deeper than half a segment: the far side of a body, not contact.
+          if (pen > 0.5_rk * p%size) cycle
+          vh = dot_product(ct%v(:, nodeh), nrm)
+          vd = dot_product(ct%v(:, noded), nrm)
+          mu = mh * md / (mh + md)
+          w = vh - vd
+          pen_free = pen + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
+          select case (p%form)
+          case (FORM_COORDINATE)
+            fh = mu * (fd_ / md - fh_ / mh - w / (0.5_rk * dt) - pen / (0.5_rk * dt * dt))
+          case (FORM_VELOCITY)
+            fh = 0.0_rk
+            if (pen_free > 0.0_rk) fh = mu * (fd_ / md - fh_ / mh - w / dt)
+          case default
+            fh = 0.0_rk
+            if (pen_free > 0.0_rk) then
+              target = -max(pen + 0.5_rk * dt * w, 0.0_rk) / dt
+              fh = mu * (fd_ / md - fh_ / mh + (target - w) / dt)
+            end if
+          end select
+          fh = min(fh, 0.0_rk)
+          if (fh < 0.0_rk) then
+            ct%fc(:, nodeh) = ct%fc(:, nodeh) + fh * nrm
+            ct%fc(:, noded) = ct%fc(:, noded) - fh * nrm
+            active = active + 1
+            sum_force = sum_force - fh
+            active_node(nodeh) = .true.
+            active_node(noded) = .true.
+            if (pen > 0.0_rk) then
+              pen_max = max(pen_max, pen)
+              pen_sq = pen_sq + s0 * pen * pen
+            end if
+            area_sum = area_sum + s0
+          end if
+        end do
+      end do
+    end do
+    released = count(p%was_active .and. .not. active_node)
+    p%was_active = active_node
+    do i = 1, ct%ncn
+      momentum = momentum + ct%fc(:, i)
+    end do
+    p%diag = [real(active, rk), sum_force, pen_max, &
+        sqrt(pen_sq / max(area_sum, tiny(1.0_rk))), real(released, rk), dt * momentum]
+  end subroutine dlm_step
+
+  !> Distance along nrm from point c to the plane through q with normal n
+  !> (c + t nrm lies on the plane).
+  pure real(rk) function plane_offset(q, n, c, nrm) result(t)
+    real(rk), intent(in) :: q(3), n(3), c(3), nrm(3)
+    real(rk) :: denominator
+    denominator = dot_product(nrm, n)
+    t = 0.0_rk
+    if (abs(denominator) > 1.0e-3_rk) t = dot_product(q - c, n) / denominator
+  end function plane_offset
+
+  !> DAM: exchange of mass, force and momentum over the facet overlaps of each
+  !> enforced slave node with the master facets (CONTACT.md 3.3-3.5), then the
+  !> put-back-on of the slave's normal velocity by RBF interpolation of the
+  !> new velocities of its master segment's nodes (3.6). Tangential motion is
+  !> free (frictionless). The corrected velocities become contact forces.
+  subroutine dam_step(ct, p, dt)
+    type(contact_t), intent(inout) :: ct
+    type(interface_t), intent(inout) :: p
+    real(rk), intent(in) :: dt
+    type(primary_pair_t), allocatable :: primary(:)
+    real(rk), allocatable :: sp_s(:), sp_m(:), mbar(:), fbar(:, :), pbar(:, :), nmaster(:, :)
+    real(rk), allocatable :: vnew(:, :)
+    logical, allocatable :: enforced(:), touched(:)
+    real(rk) :: fs(3, 3, SEGMENT_FACET_COUNT), fm(3, 3, SEGMENT_FACET_COUNT)
+    real(rk) :: nrm(3), nf(3), s0, centroid(3), shape(4), am, vm, as, vs, gfree, capture, speed
+    real(rk) :: pos(3, 4), weights(4), target, pen, pen_max, pen_sq, sum_force, momentum(3)
+    real(rk) :: unit(3), vn
+    integer :: q, n, k, e, ss, sm, i, j, m, c, ncand, active, released, npen
+    integer :: candidates(64)
+    logical :: ok
+
+    allocate(sp_s(ct%ncn), sp_m(ct%ncn), mbar(ct%ncn), fbar(3, ct%ncn), pbar(3, ct%ncn))
+    allocate(nmaster(3, ct%ncn), vnew(3, ct%ncn), enforced(ct%ncn), touched(ct%ncn))
+    sp_s = 0.0_rk
+    sp_m = 0.0_rk
+    call nodal_areas(ct%x, p%a, sp_s)
+    call nodal_areas(ct%x, p%b, sp_m)
+    speed = 0.0_rk
+    do i = 1, ct%ncn
+      speed = max(speed, norm2(ct%v(:, i)))
+    end do
+    capture = capture_of(p, 2.0_rk * speed, dt)
+    call primary_pairs(ct%x, p%b, p%test_pairs, capture, 0.5_rk * p%size, primary)
+
+    ! Which slave nodes are enforced: the free motion would close the gap.
+    enforced = .false.
+    do q = 1, size(primary)
+      n = primary(q)%node
+      nrm = primary(q)%normal
+      call bilinear_shape(primary(q)%xi, primary(q)%eta, shape)
+      am = 0.0_rk
+      vm = 0.0_rk
+      do k = 1, 4
+        m = p%b%segments(k, primary(q)%segment)
+        am = am + shape(k) * dot_product(ct%f(:, m), nrm) / ct%mass(m)
+        vm = vm + shape(k) * dot_product(ct%v(:, m), nrm)
+      end do
+      as = dot_product(ct%f(:, n), nrm) / ct%mass(n)
+      vs = dot_product(ct%v(:, n), nrm)
+      gfree = primary(q)%gap + dt * (vs - vm) + 0.5_rk * dt * dt * (as - am)
+      ! Release (3.7): the free motion at t^n+1 separates the slave from the
+      ! master (tension); a residual penetration does not hold it. This is
+      ! the rule of the unilateral rigid wall, so the mirror test holds.
+      if (vs - vm + dt * (as - am) > 0.0_rk) cycle
+      if (gfree < 0.0_rk) enforced(n) = .true.
+    end do
+
+    ! Exchange over the facet overlaps, projected on the plane of the slave's
+    ! facet, with every facet of the primary segment's neighbourhood.
+    mbar = ct%mass
+    fbar = ct%f
+    do i = 1, ct%ncn
+      pbar(:, i) = ct%mass(i) * ct%v(:, i)
+    end do
+    nmaster = 0.0_rk
+    touched = .false.
+    do q = 1, size(primary)
+      n = primary(q)%node
+      if (.not. enforced(n)) cycle
+      call master_neighbourhood(p%b, primary(q)%segment, candidates, ncand)
+      k = surface_node_index(p%a, int(n, ik))
+      do e = p%a%node_start(k), p%a%node_start(k + 1) - 1
+        ss = p%a%node_segments(e)
+        c = findloc(p%a%segments(:, ss), n, dim=1)
+        call segment_facets(ct%x(:, p%a%segments(:, ss)), fs)
+        do i = 2 * c - 1, 2 * c
+          nf = triangle_unit_normal(fs(:, :, i))
+          do j = 1, ncand
+            sm = candidates(j)
+            call segment_facets(ct%x(:, p%b%segments(:, sm)), fm)
+            do k = 1, SEGMENT_FACET_COUNT
+              if (.not. dot_product(nf, triangle_unit_normal(fm(:, :, k))) < FACING) cycle
+              call triangle_overlap(fs(:, :, i), fm(:, :, k), nf, s0, centroid)
+              if (.not. s0 > AREA_TOLERANCE * p%size**2) cycle
+              m = p%b%segments(FACET_CORNER(k), sm)
+              mbar(n) = mbar(n) + ct%mass(m) * s0 / sp_m(m)
+              mbar(m) = mbar(m) + ct%mass(n) * s0 / sp_s(n)
+              fbar(:, n) = fbar(:, n) + ct%f(:, m) * s0 / sp_m(m)
+              fbar(:, m) = fbar(:, m) + ct%f(:, n) * s0 / sp_s(n)
+              pbar(:, n) = pbar(:, n) + ct%mass(m) * ct%v(:, m) * s0 / sp_m(m)
+              pbar(:, m) = pbar(:, m) + ct%mass(n) * ct%v(:, n) * s0 / sp_s(n)
+              nmaster(:, m) = nmaster(:, m) + s0 * primary(q)%normal
+              touched(m) = .true.
+            end do
+          end do
+        end do
+      end do
+    end do
+
+    ! Free velocities, then the matched normal components of the master nodes.
+    do i = 1, ct%ncn
+      vnew(:, i) = ct%v(:, i) + dt * ct%f(:, i) / ct%mass(i)
+    end do
+    do m = 1, ct%ncn
+      if (.not. touched(m)) cycle
+      if (.not. norm2(nmaster(:, m)) > 0.0_rk) cycle
+      unit = nmaster(:, m) / norm2(nmaster(:, m))
+      vn = dot_product(pbar(:, m) + dt * fbar(:, m), unit) / mbar(m)
+      vnew(:, m) = vnew(:, m) + (vn - dot_product(vnew(:, m), unit)) * unit
+    end do
+
+    ! Put-back-on: the slave's normal velocity from its master nodes.
+    active = 0
+    npen = 0
+    pen_max = 0.0_rk
+    pen_sq = 0.0_rk
+    sum_force = 0.0_rk
+    do q = 1, size(primary)
+      n = primary(q)%node
+      if (.not. enforced(n)) cycle
+      active = active + 1
+      nrm = primary(q)%normal
+      do k = 1, 4
+        pos(:, k) = ct%x(:, p%b%segments(k, primary(q)%segment))
+      end do
+      call rbf_weights(pos, ct%x(:, n), nrm, weights, ok)
+      if (.not. ok) call bilinear_shape(primary(q)%xi, primary(q)%eta, weights)
+      target = 0.0_rk
+      do k = 1, 4
+        target = target + weights(k) * dot_product(vnew(:, p%b%segments(k, primary(q)%segment)), &
+            nrm)
+      end do
+      vnew(:, n) = vnew(:, n) + (target - dot_product(vnew(:, n), nrm)) * nrm
+      pen = -primary(q)%gap
+      if (pen > 0.0_rk) then
+        pen_max = max(pen_max, pen)
+        pen_sq = pen_sq + pen * pen
+        npen = npen + 1
+      end if
+    end do
+
+    ! The corrected velocities as contact forces.
+    momentum = 0.0_rk
+    do i = 1, ct%ncn
+      if (.not. (enforced(i) .or. touched(i))) cycle
+      ct%fc(:, i) = ct%fc(:, i) + ct%mass(i) * (vnew(:, i) - ct%v(:, i)) / dt - ct%f(:, i)
+      momentum = momentum + ct%mass(i) * (vnew(:, i) - ct%v(:, i)) - dt * ct%f(:, i)
+    end do
+    do q = 1, size(primary)
+      n = primary(q)%node
+      if (enforced(n)) sum_force = sum_force + max(dot_product(ct%mass(n) * &
+          (vnew(:, n) - ct%v(:, n)) / dt - ct%f(:, n), primary(q)%normal), 0.0_rk)
+    end do
+    released = count(p%was_active .and. .not. (enforced .or. touched))
+    p%was_active = enforced .or. touched
+    p%diag = [real(active, rk), sum_force, pen_max, &
+        sqrt(pen_sq / real(max(npen, 1), rk)), real(released, rk), momentum]
+  end subroutine dam_step
+
+  !> Bilinear shape functions of a segment at natural coordinates (xi, eta).
+  pure subroutine bilinear_shape(xi, eta, shape)
+    real(rk), intent(in) :: xi, eta
+    real(rk), intent(out) :: shape(4)
+    shape(1) = 0.25_rk * (1.0_rk - xi) * (1.0_rk - eta)
+    shape(2) = 0.25_rk * (1.0_rk + xi) * (1.0_rk - eta)
+    shape(3) = 0.25_rk * (1.0_rk + xi) * (1.0_rk + eta)
+    shape(4) = 0.25_rk * (1.0_rk - xi) * (1.0_rk + eta)
+  end subroutine bilinear_shape
+
+  !> A master segment and every segment sharing a node with it, ascending.
+  subroutine master_neighbourhood(surf, s, list, n)
+    type(contact_surface_t), intent(in) :: surf
+    integer, intent(in) :: s
+    integer, intent(out) :: list(:)
+    integer, intent(out) :: n
+    integer :: c, k, e, t, i
+    n = 0
+    do c = 1, 4
+      k = surface_node_index(surf, surf%segments(c, s))
+      do e = surf%node_start(k), surf%node_start(k + 1) - 1
+        t = surf%node_segments(e)
+        if (any(list(:n) == t)) cycle
+        if (n == size(list)) exit
+        n = n + 1
+        list(n) = t
+      end do
+    end do
+    ! ascending
+    do i = 2, n
+      t = list(i)
+      k = i - 1
+      do while (k >= 1)
+        if (list(k) <= t) exit
+        list(k + 1) = list(k)
+        k = k - 1
+      end do
+      list(k + 1) = t
+    end do
+  end subroutine master_neighbourhood
+
+  !> After the velocity update: the work of the contact forces over the step
+  !> on the owned nodes (local sum; the caller reduces it).
+  function contact_work_update(ct, v_old, v_new, dt) result(work)
+    type(contact_t), intent(in) :: ct
+    real(rk), intent(in) :: v_old(:, :), v_new(:, :)
+    real(rk), intent(in) :: dt
+    real(rk) :: work
+    integer :: i, n
+    work = 0.0_rk
+    do i = 1, ct%nown
+      n = ct%own_local(i)
+      work = work + 0.5_rk * dt * dot_product(ct%fc(:, ct%own_contact(i)), &
+          v_old(:, n) + v_new(:, n))
+    end do
+  end function contact_work_update
+
+  !> Diagnostics of every pair, (CONTACT_DIAG_COUNT, npair), replicated.
+  function contact_diagnostics(ct) result(diag)
+    type(contact_t), intent(in) :: ct
+    real(rk), allocatable :: diag(:, :)
+    integer :: k
+    allocate(diag(CONTACT_DIAG_COUNT, ct%npair))
+    do k = 1, ct%npair
+      diag(:, k) = ct%pairs(k)%diag
+    end do
+  end function contact_diagnostics
+
+  !> Sort ascending and drop repeats.
+  subroutine sort_unique(a)
+    integer(i8), allocatable, intent(inout) :: a(:)
+    integer(i8) :: t
+    integer :: i, j, n, gap
+    n = size(a)
+    gap = n / 2
+    do while (gap > 0)
+      do i = gap + 1, n
+        t = a(i)
+        j = i
+        do while (j > gap)
+          if (a(j - gap) <= t) exit
+          a(j) = a(j - gap)
+          j = j - gap
+        end do
+        a(j) = t
+      end do
+      gap = gap / 2
+    end do
+    j = 0
+    do i = 1, n
+      if (j > 0) then
+        if (a(i) == a(j)) cycle
+      end if
+      j = j + 1
+      a(j) = a(i)
+    end do
+    a = a(:j)
+  end subroutine sort_unique
+
+  !> Shell sort of reals, ascending.
+  subroutine sort_reals(a)
+    real(rk), intent(inout) :: a(:)
+    real(rk) :: t
+    integer :: i, j, n, gap
+    n = size(a)
+    gap = n / 2
+    do while (gap > 0)
+      do i = gap + 1, n
+        t = a(i)
+        j = i
+        do while (j > gap)
+          if (a(j - gap) <= t) exit
+          a(j) = a(j - gap)
+          j = j - gap
+        end do
+        a(j) = t
+      end do
+      gap = gap / 2
+    end do
+  end subroutine sort_reals
+
+  !> Index of id in the ascending array ids, 0 if absent.
+  pure integer function find_i8(ids, id) result(i)
+    integer(i8), intent(in) :: ids(:)
+    integer(i8), intent(in) :: id
+    integer :: low, high
+    low = 1
+    high = size(ids)
+    do while (low <= high)
+      i = (low + high) / 2
+      if (ids(i) == id) then
+        return
+      else if (ids(i) < id) then
+        low = i + 1
+      else
+        high = i - 1
+      end if
+    end do
+    i = 0
+  end function find_i8
+
+end module contact_enforce
