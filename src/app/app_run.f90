@@ -488,7 +488,7 @@ contains
     ! otherwise the half-step geometry interpenetrates freely and the contact
     ! pressure lags half a step (the mirror test shows it).
     if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-        state%node_force, 0.5_rk * dt, state%cycle + 1, wall_time)
+        state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
     call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
     call mesh%node_halo%exchange(state%node_velocity_half)
     do n = 1, mesh%nnode
@@ -512,7 +512,7 @@ contains
     ! Contact on the final update, boundary conditions re-imposed after it.
     contact_work = 0.0_rk
     if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-        state%node_force, dt, state%cycle + 1, wall_time)
+        state%node_force, dt, state%cycle + 1, .true., wall_time)
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
     if (ct%npair > 0) contact_work = contact_work_update(ct, state%node_velocity_old, &
         state%node_velocity, dt)

@@ -300,21 +300,28 @@ contains
     end select
   end function kind_name
 
-  !> Rigid unilateral walls: a node on the wall (at t^n, x the start-of-step
-  !> positions) whose new velocity points into the wall loses that normal
-  !> component; a node pulled away (tension) is free to leave.
-  subroutine boundary_wall(bc, x, v)
+  !> Rigid unilateral walls: a node whose free motion over the step (from x
+  !> with the trapezoid of v_old and its new velocity v) would end beyond the
+  !> wall, and whose new velocity points into it, loses that normal component;
+  !> a node pulled away (tension) is free to leave, and one approaching is held
+  !> on the step it would cross (no penetration beyond the half step of the
+  !> impact). The same closing rule as the contact methods, so that a body
+  !> hitting its mirror image through contact equals the body on the wall.
+  subroutine boundary_wall(bc, x, v_old, v, step)
     type(boundary_t), intent(in) :: bc
-    real(rk), intent(in) :: x(:, :)
-    real(rk), intent(inout) :: v(:, :)
+    real(rk), intent(in) :: x(:, :) !< positions at the start of the step
+    real(rk), intent(in) :: v_old(:, :) !< velocities at the start of the step
+    real(rk), intent(inout) :: v(:, :) !< new velocities
+    real(rk), intent(in) :: step
     integer :: k, n
     real(rk) :: vn
     do k = 1, bc%nwall
       n = bc%wall_node(k)
-      if (dot_product(bc%wall_normal(:, k), x(:, n)) < bc%wall_offset(k) - &
-          bc%wall_tolerance(k)) cycle
       vn = dot_product(bc%wall_normal(:, k), v(:, n))
-      if (vn > 0.0_rk) v(:, n) = v(:, n) - vn * bc%wall_normal(:, k)
+      if (.not. vn > 0.0_rk) cycle
+      if (.not. dot_product(bc%wall_normal(:, k), x(:, n) + 0.5_rk * step * &
+          (v_old(:, n) + v(:, n))) > bc%wall_offset(k)) cycle
+      v(:, n) = v(:, n) - vn * bc%wall_normal(:, k)
     end do
   end subroutine boundary_wall
 

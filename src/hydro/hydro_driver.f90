@@ -161,7 +161,7 @@ contains
           state%node_mass(n)
     end do
     call boundary_constrain(bc, v_new, .true.)
-    call boundary_wall(bc, state%node_position_old, v_new)
+    call boundary_wall(bc, state%node_position_old, state%node_velocity_old, v_new, step)
     ! Work of the constraint and wall reactions and of the applied pressure.
     work = 0.0_rk
     do k = 1, bc%nkinematic
