@@ -482,6 +482,71 @@ def cmd_mirror(args):
     print("largest node displacement of the body: %.3e of its size" % moved)
 
 
+def cmd_patch(args):
+    """Patch test (PROBLEMS.md C): after a planar wave crossed a contact
+    interface between non-matching meshes, the normal stress sigma_xx of the
+    zones with centroid x in --range (behind the front) is uniform across the
+    section, (max - min)/|mean| <= --tol, and its mean equals --target within
+    --tol (the applied pressure, transmitted through matched impedances)."""
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "patch")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    d = dump.load(final_dump(wd))
+    c = dump.zone_centroids(d)
+    sxx = -d["pressure"] + d["deviatoric_stress"][:, 0]
+    sel = (c[:, 0] > args.range[0]) & (c[:, 0] < args.range[1])
+    check("zones in the window", sel.sum() > 0)
+    if not sel.any():
+        return
+    worst = 0.0
+    for x0 in np.unique(np.round(c[sel, 0], 9)):
+        layer = sel & (np.abs(c[:, 0] - x0) < 1e-9 * (1 + abs(x0)))
+        s = sxx[layer]
+        worst = max(worst, (s.max() - s.min()) / abs(s.mean()))
+    check("transverse variation of sigma_xx behind the interface %.3e (tolerance %.1e)"
+          % (worst, args.tol), worst <= args.tol)
+    mean = sxx[sel].mean()
+    check("transmitted sigma_xx %.6e vs %.6e within %.1f%%" % (mean, args.target,
+          100 * args.tol), abs(mean / args.target - 1) <= args.tol)
+
+
+def cmd_relative(args):
+    """A contact run against its single-mesh reference (PROBLEMS.md D): the
+    --key of compare.py (--problem) for --deck is at most (1 + --tol) times
+    the reference's (--reference); with --pair, the interface is in contact
+    on every cycle and never releases."""
+    import numpy as np
+    wd_ref = os.path.join(args.workdir, "reference")
+    wd = os.path.join(args.workdir, "contact")
+    code, out, err = run(args, args.np, wd_ref, args.reference)
+    check("reference run exits 0", code == 0, err[-2000:])
+    code2, out, err = run(args, args.np, wd, args.deck)
+    check("contact run exits 0", code2 == 0, err[-2000:])
+    if code or code2:
+        return
+    rc, ref, err = compare_values(final_dump(wd_ref), args.problem, args.compare_args)
+    rc2, got, err2 = compare_values(final_dump(wd), args.problem, args.compare_args)
+    check("compare.py runs", rc == 0 and rc2 == 0, (err + err2)[-2000:])
+    a, b = got.get(args.key, float("nan")), ref.get(args.key, float("nan"))
+    check("%s = %.4e vs reference %.4e: ratio %.4f <= %.3f" % (args.key, a, b, a / b,
+          1 + args.tol), a <= (1 + args.tol) * b)
+    if args.pair:
+        with open(os.path.join(wd, "history.txt")) as f:
+            header = f.readline().split()[1:]
+            rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+        active = rows[:, header.index(args.pair + "_active")]
+        released = rows[:, header.index(args.pair + "_released")]
+        check("interface in contact on every cycle (%d of %d)" % ((active > 0).sum(),
+              active.size), bool((active > 0).all()))
+        check("no node released (%d)" % released.sum(), released.sum() == 0)
+        pen = rows[:, header.index(args.pair + "_pen_max")]
+        print("largest penetration %.3e" % pen.max())
+
+
 def cmd_twowave(args):
     """Elastic-plastic piston problem: elastic precursor and plastic wave.
 
@@ -605,7 +670,7 @@ def main():
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
                                         "convergence", "window", "interface", "stability",
                                         "wavefront", "rebound", "twowave", "shell_stop",
-                                        "stopfile", "bars", "mirror"])
+                                        "stopfile", "bars", "mirror", "patch", "relative"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
