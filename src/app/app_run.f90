@@ -396,6 +396,10 @@ contains
       code = EXIT_FAILURE
       return
     end if
+    if (par_rank() == 0 .and. ct%npair > 0) write(output_unit, '(a,f10.3,a,f10.3,a,f6.1,a)') &
+        'impact3d: contact ', ct%search_seconds, ' s search, ', ct%enforce_seconds, &
+        ' s enforcement (', 100.0_rk * (ct%search_seconds + ct%enforce_seconds) / &
+        max(wall_time() - wall_start - wall_output, 1.0e-9_rk), '% of the loop, rank 0)'
     if (par_rank() == 0) write(output_unit, '(a,i0,a,f10.3,a,f8.3,a)') 'impact3d: done, ', &
         state%cycle, ' cycles, ', wall_time() - wall_start, ' s (', wall_output, &
         ' s of it in dumps)'

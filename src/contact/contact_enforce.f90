@@ -54,7 +54,7 @@ module contact_enforce
   use mesh_local, only: mesh_t
   use contact_geometry, only: segment_facets, corner_areas, quad_unit_normal, &
       triangle_unit_normal, triangle_overlap, triangle_vector_area, SEGMENT_FACET_COUNT, &
-      FACET_CORNER
+      FACET_CORNER, tangent_basis
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_update_edges, surface_node_index
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
@@ -390,7 +390,8 @@ contains
     real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, nh(3), nd(3)
     real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, pen_free, w, target, sum_force, pen_max
     real(rk) :: pen_sq, momentum(3), area_sum, wh, wd
-    real(rk) :: area_a(SEGMENT_FACET_COUNT), area_b(SEGMENT_FACET_COUNT)
+    real(rk) :: area_a(SEGMENT_FACET_COUNT), area_b(SEGMENT_FACET_COUNT), t1(3), t2(3)
+    real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT)
     integer :: m, sa, sb, i, j, nodeh, noded, active, released, na_pen
     logical :: a_hits
     logical, allocatable :: active_node(:)
@@ -425,12 +426,20 @@ contains
       nrm = nrm / norm2(nrm)
       call segment_facets(ct%x(:, p%a%segments(:, sa)), fa)
       call segment_facets(ct%x(:, p%b%segments(:, sb)), fb)
+      call tangent_basis(nrm, t1, t2)
       do i = 1, SEGMENT_FACET_COUNT
         area_a(i) = norm2(triangle_vector_area(fa(:, :, i)))
         area_b(i) = norm2(triangle_vector_area(fb(:, :, i)))
+        call facet_box(fa(:, :, i), t1, t2, box_a(:, i))
+        call facet_box(fb(:, :, i), t1, t2, box_b(:, i))
       end do
+      ! Segments whose projections do not meet have no overlap.
+      if (.not. boxes_meet([minval(box_a(1, :)), maxval(box_a(2, :)), minval(box_a(3, :)), &
+          maxval(box_a(4, :))], [minval(box_b(1, :)), maxval(box_b(2, :)), &
+          minval(box_b(3, :)), maxval(box_b(4, :))])) cycle
       do i = 1, SEGMENT_FACET_COUNT
         do j = 1, SEGMENT_FACET_COUNT
+          if (.not. boxes_meet(box_a(:, i), box_b(:, j))) cycle
           if (a_hits) then
             call triangle_overlap(fa(:, :, i), fb(:, :, j), nrm, s0, centroid)
           else
@@ -507,6 +516,30 @@ contains
         sqrt(pen_sq / max(area_sum, tiny(1.0_rk))), real(released, rk), dt * momentum]
   end subroutine dlm_step
 
+  !> Bounding box (min t1, max t1, min t2, max t2) of a facet projected on the
+  !> plane spanned by t1, t2.
+  pure subroutine facet_box(facet, t1, t2, box)
+    real(rk), intent(in) :: facet(3, 3), t1(3), t2(3)
+    real(rk), intent(out) :: box(4)
+    real(rk) :: u(3), w(3)
+    integer :: k
+    do k = 1, 3
+      u(k) = dot_product(facet(:, k), t1)
+      w(k) = dot_product(facet(:, k), t2)
+    end do
+    box = [minval(u), maxval(u), minval(w), maxval(w)]
+  end subroutine facet_box
+
+  !> Two projected boxes overlap (with a relative margin for round-off; the
+  !> exact clip decides).
+  pure logical function boxes_meet(a, b)
+    real(rk), intent(in) :: a(4), b(4)
+    real(rk) :: pad
+    pad = 1.0e-9_rk * max(a(2) - a(1), a(4) - a(3), b(2) - b(1), b(4) - b(3))
+    boxes_meet = a(1) <= b(2) + pad .and. b(1) <= a(2) + pad .and. a(3) <= b(4) + pad .and. &
+        b(3) <= a(4) + pad
+  end function boxes_meet
+
   !> The part of a facet's own area that an overlap s0, measured in the plane
   !> normal to nrm, covers: s0 times the facet's area over its projected area.
   !> Divided by the nodal area it is the node's share carried by the overlap;
@@ -549,7 +582,7 @@ contains
     real(rk) :: fs(3, 3, SEGMENT_FACET_COUNT), fm(3, 3, SEGMENT_FACET_COUNT)
     real(rk) :: nrm(3), nf(3), s0, centroid(3), shape(4), am, vm, as, vs, gfree, capture, speed
     real(rk) :: pos(3, 4), weights(4), target, pen, pen_max, pen_sq, sum_force, momentum(3)
-    real(rk) :: unit(3), vn, wm, ws
+    real(rk) :: unit(3), vn, wm, ws, t1(3), t2(3), box_s(4), box_m(4)
     integer :: q, n, k, e, ss, sm, i, j, m, c, ncand, active, released, npen
     integer :: candidates(64)
     logical :: ok
@@ -610,10 +643,14 @@ contains
         call segment_facets(ct%x(:, p%a%segments(:, ss)), fs)
         do i = 2 * c - 1, 2 * c
           nf = triangle_unit_normal(fs(:, :, i))
+          call tangent_basis(nf, t1, t2)
+          call facet_box(fs(:, :, i), t1, t2, box_s)
           do j = 1, ncand
             sm = candidates(j)
             call segment_facets(ct%x(:, p%b%segments(:, sm)), fm)
             do k = 1, SEGMENT_FACET_COUNT
+              call facet_box(fm(:, :, k), t1, t2, box_m)
+              if (.not. boxes_meet(box_s, box_m)) cycle
               if (.not. dot_product(nf, triangle_unit_normal(fm(:, :, k))) < FACING) cycle
               call triangle_overlap(fs(:, :, i), fm(:, :, k), nf, s0, centroid)
               if (.not. s0 > AREA_TOLERANCE * min(norm2(triangle_vector_area(fs(:, :, i))), &

@@ -37,7 +37,7 @@ module contact_geometry
   public :: segment_facets, segment_area, corner_areas, quad_unit_normal
   public :: triangle_vector_area, triangle_unit_normal
   public :: triangle_overlap, triangle_overlap_area
-  public :: SEGMENT_FACET_COUNT, FACET_CORNER
+  public :: SEGMENT_FACET_COUNT, FACET_CORNER, tangent_basis
 
   !> Number of facets of one segment.
   integer, parameter :: SEGMENT_FACET_COUNT = 8
