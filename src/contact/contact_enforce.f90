@@ -118,6 +118,9 @@ module contact_enforce
     integer, allocatable :: segment_pairs(:, :) !< DLM: (2, n) segment of a, of b
     integer, allocatable :: test_pairs(:, :) !< DAM: (2, n) slave node, master segment
     logical, allocatable :: was_active(:) !< (ncn) node carried contact force last step
+    integer :: nfp = 0 !< DLM facet pairs of the cycle
+    integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
+    real(rk), allocatable :: fp_real(:, :) !< (7, nfp) shares wh, wd, pen, s0, normal
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     logical, public :: warned = .false. !< the penetration warning was given
   end type interface_t
@@ -386,35 +389,27 @@ contains
   end subroutine nodal_areas
 
   !> DLM: every overlapping facet pair of facing segments is a 1D contact pair.
-  subroutine dlm_step(ct, p, dt, final)
-    type(contact_t), intent(inout) :: ct
+  !> DLM geometry at x^n (the same for both stages, so computed once per
+  !> cycle, in the predictor): every overlapping facet pair of facing
+  !> segments with its nodes, shares, common normal and penetration.
+  subroutine dlm_geometry(ct, p)
+    type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
-    real(rk), intent(in) :: dt !< the stage's step
-    logical, intent(in) :: final !< update the diagnostics
     real(rk), allocatable :: sp_a(:), sp_b(:)
     real(rk) :: fa(3, 3, SEGMENT_FACET_COUNT), fb(3, 3, SEGMENT_FACET_COUNT)
-    real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, nh(3), nd(3)
-    real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, pen_free, w, target, sum_force, pen_max
-    real(rk) :: pen_sq, momentum(3), area_sum, wh, wd
+    real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, nh(3), nd(3), wh, wd
     real(rk) :: area_a(SEGMENT_FACET_COUNT), area_b(SEGMENT_FACET_COUNT), t1(3), t2(3)
     real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT)
-    integer :: m, sa, sb, i, j, nodeh, noded, active, released, na_pen
+    integer :: m, sa, sb, i, j, nodeh, noded
     logical :: a_hits
-    logical, allocatable :: active_node(:)
 
-    allocate(sp_a(ct%ncn), sp_b(ct%ncn), active_node(ct%ncn))
+    allocate(sp_a(ct%ncn), sp_b(ct%ncn))
     sp_a = 0.0_rk
     sp_b = 0.0_rk
-    active_node = .false.
     call nodal_areas(ct%x, p%a, sp_a)
     call nodal_areas(ct%x, p%b, sp_b)
-    active = 0
-    sum_force = 0.0_rk
-    pen_max = 0.0_rk
-    pen_sq = 0.0_rk
-    area_sum = 0.0_rk
-    na_pen = 0
-    momentum = 0.0_rk
+    p%nfp = 0
+    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(7, 64))
     do m = 1, size(p%segment_pairs, 2)
       sa = p%segment_pairs(1, m)
       sb = p%segment_pairs(2, m)
@@ -473,44 +468,97 @@ contains
           end if
           ! Deeper than half a segment: the far side of a body, not contact.
           if (pen > 0.5_rk * p%size) cycle
-          mh = ct%mass(nodeh) * wh
-          md = ct%mass(noded) * wd
-          fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
-          fd_ = dot_product(ct%f(:, noded), nrm) * wd
-          vh = dot_product(ct%v(:, nodeh), nrm)
-          vd = dot_product(ct%v(:, noded), nrm)
-          mu = mh * md / (mh + md)
-          w = vh - vd
-          pen_free = pen + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
-          select case (p%form)
-          case (FORM_COORDINATE)
-            fh = mu * (fd_ / md - fh_ / mh - w / (0.5_rk * dt) - pen / (0.5_rk * dt * dt))
-          case (FORM_VELOCITY)
-            fh = 0.0_rk
-            if (pen_free > 0.0_rk) fh = mu * (fd_ / md - fh_ / mh - w / dt)
-          case default
-            fh = 0.0_rk
-            if (pen_free > 0.0_rk) then
-              target = -max(pen + 0.5_rk * dt * w, 0.0_rk) / dt
-              fh = mu * (fd_ / md - fh_ / mh + (target - w) / dt)
-            end if
-          end select
-          fh = min(fh, 0.0_rk)
-          if (fh < 0.0_rk) then
-            ct%fc(:, nodeh) = ct%fc(:, nodeh) + fh * nrm
-            ct%fc(:, noded) = ct%fc(:, noded) - fh * nrm
-            active = active + 1
-            sum_force = sum_force - fh
-            active_node(nodeh) = .true.
-            active_node(noded) = .true.
-            if (pen > 0.0_rk) then
-              pen_max = max(pen_max, pen)
-              pen_sq = pen_sq + s0 * pen * pen
-            end if
-            area_sum = area_sum + s0
-          end if
+          call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm)
         end do
       end do
+    end do
+  end subroutine dlm_geometry
+
+  !> Append one facet pair to the interface's cache, growing it when full.
+  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm)
+    type(interface_t), intent(inout) :: p
+    integer, intent(in) :: nodeh, noded
+    real(rk), intent(in) :: wh, wd, pen, s0, nrm(3)
+    integer, allocatable :: grown_node(:, :)
+    real(rk), allocatable :: grown_real(:, :)
+    if (p%nfp == size(p%fp_node, 2)) then
+      allocate(grown_node(2, 2 * p%nfp), grown_real(7, 2 * p%nfp))
+      grown_node(:, :p%nfp) = p%fp_node(:, :p%nfp)
+      grown_real(:, :p%nfp) = p%fp_real(:, :p%nfp)
+      call move_alloc(grown_node, p%fp_node)
+      call move_alloc(grown_real, p%fp_real)
+    end if
+    p%nfp = p%nfp + 1
+    p%fp_node(:, p%nfp) = [nodeh, noded]
+    p%fp_real(:, p%nfp) = [wh, wd, pen, s0, nrm]
+  end subroutine add_facet_pair
+
+  !> DLM: every overlapping facet pair of facing segments is a 1D contact pair
+  !> (geometry from dlm_geometry, forces of the stage).
+  subroutine dlm_step(ct, p, dt, final)
+    type(contact_t), intent(inout) :: ct
+    type(interface_t), intent(inout) :: p
+    real(rk), intent(in) :: dt !< the stage's step
+    logical, intent(in) :: final !< the corrector: update the diagnostics
+    real(rk) :: nrm(3), s0, pen, wh, wd
+    real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, pen_free, w, target, sum_force, pen_max
+    real(rk) :: pen_sq, momentum(3), area_sum
+    integer :: q, i, nodeh, noded, active, released
+    logical, allocatable :: active_node(:)
+
+    if (.not. final .or. .not. allocated(p%fp_node)) call dlm_geometry(ct, p)
+    allocate(active_node(ct%ncn))
+    active_node = .false.
+    active = 0
+    sum_force = 0.0_rk
+    pen_max = 0.0_rk
+    pen_sq = 0.0_rk
+    area_sum = 0.0_rk
+    momentum = 0.0_rk
+    do q = 1, p%nfp
+      nodeh = p%fp_node(1, q)
+      noded = p%fp_node(2, q)
+      wh = p%fp_real(1, q)
+      wd = p%fp_real(2, q)
+      pen = p%fp_real(3, q)
+      s0 = p%fp_real(4, q)
+      nrm = p%fp_real(5:7, q)
+      mh = ct%mass(nodeh) * wh
+      md = ct%mass(noded) * wd
+      fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
+      fd_ = dot_product(ct%f(:, noded), nrm) * wd
+      vh = dot_product(ct%v(:, nodeh), nrm)
+      vd = dot_product(ct%v(:, noded), nrm)
+      mu = mh * md / (mh + md)
+      w = vh - vd
+      pen_free = pen + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
+      select case (p%form)
+      case (FORM_COORDINATE)
+        fh = mu * (fd_ / md - fh_ / mh - w / (0.5_rk * dt) - pen / (0.5_rk * dt * dt))
+      case (FORM_VELOCITY)
+        fh = 0.0_rk
+        if (pen_free > 0.0_rk) fh = mu * (fd_ / md - fh_ / mh - w / dt)
+      case default
+        fh = 0.0_rk
+        if (pen_free > 0.0_rk) then
+          target = -max(pen + 0.5_rk * dt * w, 0.0_rk) / dt
+          fh = mu * (fd_ / md - fh_ / mh + (target - w) / dt)
+        end if
+      end select
+      fh = min(fh, 0.0_rk)
+      if (fh < 0.0_rk) then
+        ct%fc(:, nodeh) = ct%fc(:, nodeh) + fh * nrm
+        ct%fc(:, noded) = ct%fc(:, noded) - fh * nrm
+        active = active + 1
+        sum_force = sum_force - fh
+        active_node(nodeh) = .true.
+        active_node(noded) = .true.
+        if (pen > 0.0_rk) then
+          pen_max = max(pen_max, pen)
+          pen_sq = pen_sq + s0 * pen * pen
+        end if
+        area_sum = area_sum + s0
+      end if
     end do
     if (.not. final) return
     released = count(p%was_active .and. .not. active_node)
