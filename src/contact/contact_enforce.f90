@@ -64,7 +64,7 @@ module contact_enforce
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_update_edges, surface_node_index
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
-      search_interval, KIND_NONE
+      search_interval, find_key, sort_real
   use contact_rbf, only: rbf_weights
   use parallel_env, only: par_sum_array
   implicit none
@@ -225,7 +225,7 @@ contains
     ct%nown = 0
     allocate(ct%own_contact(mesh%nnode_owned), ct%own_local(mesh%nnode_owned))
     do n = 1, mesh%nnode_owned
-      i = find_i8(ct%gid, mesh%node_gid(n))
+      i = find_key(ct%gid, mesh%node_gid(n))
       if (i == 0) cycle
       ct%nown = ct%nown + 1
       ct%own_contact(ct%nown) = i
@@ -250,7 +250,7 @@ contains
       allocate(segments(4, raw%nseg))
       do s = 1, raw%nseg
         do c = 1, 4
-          segments(c, s) = int(find_i8(ct%gid, int(raw%segments(c, s), i8)), ik)
+          segments(c, s) = int(find_key(ct%gid, int(raw%segments(c, s), i8)), ik)
         end do
       end do
       call surface_from_segments(segments, raw%segment_id, xc, surf)
@@ -275,7 +275,7 @@ contains
             x(:, surf%segments(c, s))))
       end do
     end do
-    call sort_reals(sizes)
+    call sort_real(sizes)
     h = sizes((surf%nseg + 1) / 2)
   end function median_size
 
@@ -886,46 +886,6 @@ contains
     a = a(:j)
   end subroutine sort_unique
 
-  !> Shell sort of reals, ascending.
-  subroutine sort_reals(a)
-    real(rk), intent(inout) :: a(:)
-    real(rk) :: t
-    integer :: i, j, n, gap
-    n = size(a)
-    gap = n / 2
-    do while (gap > 0)
-      do i = gap + 1, n
-        t = a(i)
-        j = i
-        do while (j > gap)
-          if (a(j - gap) <= t) exit
-          a(j) = a(j - gap)
-          j = j - gap
-        end do
-        a(j) = t
-      end do
-      gap = gap / 2
-    end do
-  end subroutine sort_reals
 
-  !> Index of id in the ascending array ids, 0 if absent.
-  pure integer function find_i8(ids, id) result(i)
-    integer(i8), intent(in) :: ids(:)
-    integer(i8), intent(in) :: id
-    integer :: low, high
-    low = 1
-    high = size(ids)
-    do while (low <= high)
-      i = (low + high) / 2
-      if (ids(i) == id) then
-        return
-      else if (ids(i) < id) then
-        low = i + 1
-      else
-        high = i - 1
-      end if
-    end do
-    i = 0
-  end function find_i8
 
 end module contact_enforce

@@ -46,6 +46,7 @@ module contact_search
   private
   public :: segment_territory, bucket_search, closest_point, contact_kind, primary_pairs
   public :: pair_excluded, search_interval, largest_relative_speed, segment_pair_search
+  public :: find_key, sort_real
 
   !> No contact.
   integer, parameter, public :: KIND_NONE = 0
