@@ -68,6 +68,15 @@ def run(args, np, workdir, deck, extra=()):
     return proc.returncode, proc.stdout, proc.stderr
 
 
+def read_history(workdir):
+    """history.txt of a run: (column names, rows as a float array)."""
+    import numpy as np
+    with open(os.path.join(workdir, "history.txt")) as f:
+        header = f.readline().split()[1:]
+        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+    return header, rows
+
+
 def final_dump(workdir):
     dumps = sorted(glob.glob(os.path.join(workdir, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
     return dumps[-1] if dumps else None
@@ -334,9 +343,7 @@ def cmd_rebound(args):
     check("run exits 0", code == 0, err[-2000:])
     if code != 0:
         return
-    with open(os.path.join(wd, "history.txt")) as f:
-        header = f.readline().split()[1:]
-        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+    header, rows = read_history(wd)
     t = rows[:, header.index("time")]
     p = rows[:, header.index("momentum_x")]
     p0 = p[0]
@@ -367,9 +374,7 @@ def cmd_bars(args):
     check("run exits 0", code == 0, err[-2000:])
     if code != 0:
         return
-    with open(os.path.join(wd, "history.txt")) as f:
-        header = f.readline().split()[1:]
-        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+    header, rows = read_history(wd)
     t = rows[:, header.index("time")]
     dt = rows[:, header.index("dt")]
     active = rows[:, header.index(args.pair + "_active")] > 0
@@ -535,9 +540,7 @@ def cmd_relative(args):
     check("%s = %.4e vs reference %.4e: ratio %.4f <= %.3f" % (args.key, a, b, a / b,
           1 + args.tol), a <= (1 + args.tol) * b)
     if args.pair:
-        with open(os.path.join(wd, "history.txt")) as f:
-            header = f.readline().split()[1:]
-            rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+        header, rows = read_history(wd)
         active = rows[:, header.index(args.pair + "_active")]
         released = rows[:, header.index(args.pair + "_released")]
         check("interface in contact on every cycle (%d of %d)" % ((active > 0).sum(),
