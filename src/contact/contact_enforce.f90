@@ -59,7 +59,7 @@ module contact_enforce
   use mesh_global, only: global_mesh_t, NAME_LEN
   use mesh_local, only: mesh_t
   use contact_geometry, only: segment_facets, corner_areas, quad_unit_normal, &
-      triangle_unit_normal, triangle_overlap, triangle_vector_area, SEGMENT_FACET_COUNT, &
+      triangle_unit_normal, triangle_overlap, triangle_overlap_2d, triangle_vector_area, SEGMENT_FACET_COUNT, &
       FACET_CORNER, tangent_basis
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_update_edges, surface_node_index
@@ -105,6 +105,16 @@ module contact_enforce
     integer :: search_every = 0 !< cycles between global searches (0 = automatic)
   end type contact_spec_t
 
+  !> Geometry of one surface at x^n, computed once per cycle (in the
+  !> predictor; both stages use x^n) and shared by every segment pair.
+  type :: surface_geometry_t
+    real(rk), allocatable :: facets(:, :, :, :) !< (3, 3, SEGMENT_FACET_COUNT, nseg)
+    real(rk), allocatable :: normal(:, :, :) !< (3, SEGMENT_FACET_COUNT, nseg) facet unit normals
+    real(rk), allocatable :: area(:, :) !< (SEGMENT_FACET_COUNT, nseg) facet areas
+    real(rk), allocatable :: quad_normal(:, :) !< (3, nseg) segment unit normals
+    real(rk), allocatable :: nodal_area(:) !< (ncn) dual-cell areas of the surface's nodes
+  end type surface_geometry_t
+
   !> One contact pair (interface) in contact-index space.
   type, public :: interface_t
     type(contact_spec_t), public :: spec
@@ -121,6 +131,12 @@ module contact_enforce
     integer :: nfp = 0 !< DLM facet pairs of the cycle
     integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
     real(rk), allocatable :: fp_real(:, :) !< (7, nfp) shares wh, wd, pen, s0, normal
+    type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
+    type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
+    real(rk), allocatable :: rbf(:, :) !< DAM: (4, nprimary) put-back weights
+    integer, allocatable :: ex_start(:) !< DAM: (nprimary + 1) exchange entries of a pair
+    integer, allocatable :: ex_master(:) !< DAM: master node of an exchange entry
+    real(rk), allocatable :: ex_real(:, :) !< DAM: (3, nex) shares wm, ws and overlap s0
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     logical, public :: warned = .false. !< the penetration warning was given
   end type interface_t
@@ -388,90 +404,139 @@ contains
     end do
   end subroutine nodal_areas
 
-  !> DLM: every overlapping facet pair of facing segments is a 1D contact pair.
+  !> A surface's facets, facet normals and areas, segment normals and nodal
+  !> areas at x (once per cycle; every segment pair then reads them).
+  subroutine geometry_update(x, surf, g)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    type(surface_geometry_t), intent(inout) :: g
+    integer :: s, i
+    if (.not. allocated(g%facets)) allocate(g%facets(3, 3, SEGMENT_FACET_COUNT, surf%nseg), &
+        g%normal(3, SEGMENT_FACET_COUNT, surf%nseg), g%area(SEGMENT_FACET_COUNT, surf%nseg), &
+        g%quad_normal(3, surf%nseg), g%nodal_area(size(x, 2)))
+    do s = 1, surf%nseg
+      call segment_facets(x(:, surf%segments(:, s)), g%facets(:, :, :, s))
+      do i = 1, SEGMENT_FACET_COUNT
+        g%normal(:, i, s) = triangle_unit_normal(g%facets(:, :, i, s))
+        g%area(i, s) = norm2(triangle_vector_area(g%facets(:, :, i, s)))
+      end do
+      g%quad_normal(:, s) = quad_unit_normal(x(:, surf%segments(:, s)))
+    end do
+    g%nodal_area = 0.0_rk
+    call nodal_areas(x, surf, g%nodal_area)
+  end subroutine geometry_update
+
+  !> Bounding box of a segment's corners projected on the plane spanned by
+  !> t1, t2 (its facets' centre and midpoints lie inside it), relative to origin.
+  pure subroutine segment_box(x, corners, origin, t1, t2, box)
+    real(rk), intent(in) :: x(:, :), origin(3), t1(3), t2(3)
+    integer(ik), intent(in) :: corners(4)
+    real(rk), intent(out) :: box(4)
+    real(rk) :: u, w
+    integer :: c
+    box = [huge(1.0_rk), -huge(1.0_rk), huge(1.0_rk), -huge(1.0_rk)]
+    do c = 1, 4
+      u = dot_product(x(:, corners(c)) - origin, t1)
+      w = dot_product(x(:, corners(c)) - origin, t2)
+      box = [min(box(1), u), max(box(2), u), min(box(3), w), max(box(4), w)]
+    end do
+  end subroutine segment_box
+
+  !> A segment's facets projected on the plane spanned by t1, t2 (relative to
+  !> origin) and their bounding boxes.
+  pure subroutine project_facets(facets, origin, t1, t2, f2, box)
+    real(rk), intent(in) :: facets(3, 3, SEGMENT_FACET_COUNT), origin(3), t1(3), t2(3)
+    real(rk), intent(out) :: f2(2, 3, SEGMENT_FACET_COUNT), box(4, SEGMENT_FACET_COUNT)
+    integer :: i, v
+    do i = 1, SEGMENT_FACET_COUNT
+      do v = 1, 3
+        f2(1, v, i) = dot_product(facets(:, v, i) - origin, t1)
+        f2(2, v, i) = dot_product(facets(:, v, i) - origin, t2)
+      end do
+      box(:, i) = [minval(f2(1, :, i)), maxval(f2(1, :, i)), minval(f2(2, :, i)), &
+          maxval(f2(2, :, i))]
+    end do
+  end subroutine project_facets
+
+
   !> DLM geometry at x^n (the same for both stages, so computed once per
   !> cycle, in the predictor): every overlapping facet pair of facing
-  !> segments with its nodes, shares, common normal and penetration.
+  !> segments with its nodes, shares, common normal and penetration. The
+  !> facets of a segment pair are projected once on the common plane
+  !> (coordinates relative to segment a's centre); the overlap centroid lies
+  !> in that plane, and the penetration, a difference of two distances along
+  !> the normal, does not depend on where along the normal it lies.
   subroutine dlm_geometry(ct, p)
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
-    real(rk), allocatable :: sp_a(:), sp_b(:)
-    real(rk) :: fa(3, 3, SEGMENT_FACET_COUNT), fb(3, 3, SEGMENT_FACET_COUNT)
-    real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, nh(3), nd(3), wh, wd
-    real(rk) :: area_a(SEGMENT_FACET_COUNT), area_b(SEGMENT_FACET_COUNT), t1(3), t2(3)
-    real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT)
+    real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, wh, wd, t1(3), t2(3), origin(3)
+    real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT), seg_a(4), seg_b(4)
+    real(rk) :: a2(2, 3, SEGMENT_FACET_COUNT), b2(2, 3, SEGMENT_FACET_COUNT), centre2(2)
     integer :: m, sa, sb, i, j, nodeh, noded
     logical :: a_hits
 
-    allocate(sp_a(ct%ncn), sp_b(ct%ncn))
-    sp_a = 0.0_rk
-    sp_b = 0.0_rk
-    call nodal_areas(ct%x, p%a, sp_a)
-    call nodal_areas(ct%x, p%b, sp_b)
+    call geometry_update(ct%x, p%a, p%ga)
+    call geometry_update(ct%x, p%b, p%gb)
     p%nfp = 0
     if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(7, 64))
-    do m = 1, size(p%segment_pairs, 2)
-      sa = p%segment_pairs(1, m)
-      sb = p%segment_pairs(2, m)
-      na = quad_unit_normal(ct%x(:, p%a%segments(:, sa)))
-      nb = quad_unit_normal(ct%x(:, p%b%segments(:, sb)))
-      if (.not. dot_product(na, nb) < FACING) cycle
-      ! Hitting side: surface a, or in self-contact the lower segment id.
-      a_hits = .true.
-      if (p%self) a_hits = p%a%segment_id(sa) < p%b%segment_id(sb)
-      if (a_hits) then
-        nrm = na - nb
-      else
-        nrm = nb - na
-      end if
-      nrm = nrm / norm2(nrm)
-      call segment_facets(ct%x(:, p%a%segments(:, sa)), fa)
-      call segment_facets(ct%x(:, p%b%segments(:, sb)), fb)
-      call tangent_basis(nrm, t1, t2)
-      do i = 1, SEGMENT_FACET_COUNT
-        area_a(i) = norm2(triangle_vector_area(fa(:, :, i)))
-        area_b(i) = norm2(triangle_vector_area(fb(:, :, i)))
-        call facet_box(fa(:, :, i), t1, t2, box_a(:, i))
-        call facet_box(fb(:, :, i), t1, t2, box_b(:, i))
-      end do
-      ! Segments whose projections do not meet have no overlap.
-      if (.not. boxes_meet([minval(box_a(1, :)), maxval(box_a(2, :)), minval(box_a(3, :)), &
-          maxval(box_a(4, :))], [minval(box_b(1, :)), maxval(box_b(2, :)), &
-          minval(box_b(3, :)), maxval(box_b(4, :))])) cycle
-      do i = 1, SEGMENT_FACET_COUNT
-        do j = 1, SEGMENT_FACET_COUNT
-          if (.not. boxes_meet(box_a(:, i), box_b(:, j))) cycle
-          if (a_hits) then
-            call triangle_overlap(fa(:, :, i), fb(:, :, j), nrm, s0, centroid)
-          else
-            call triangle_overlap(fb(:, :, j), fa(:, :, i), nrm, s0, centroid)
-          end if
-          if (.not. s0 > AREA_TOLERANCE * min(area_a(i), area_b(j))) cycle
-          if (a_hits) then
-            nodeh = p%a%segments(FACET_CORNER(i), sa)
-            noded = p%b%segments(FACET_CORNER(j), sb)
-            nh = triangle_unit_normal(fa(:, :, i))
-            nd = triangle_unit_normal(fb(:, :, j))
-            pen = plane_offset(fa(:, 1, i), nh, centroid, nrm) - &
-                plane_offset(fb(:, 1, j), nd, centroid, nrm)
-            wh = covered(fa(:, :, i), s0, nrm) / sp_a(nodeh)
-            wd = covered(fb(:, :, j), s0, nrm) / sp_b(noded)
-          else
-            nodeh = p%b%segments(FACET_CORNER(j), sb)
-            noded = p%a%segments(FACET_CORNER(i), sa)
-            nh = triangle_unit_normal(fb(:, :, j))
-            nd = triangle_unit_normal(fa(:, :, i))
-            pen = plane_offset(fb(:, 1, j), nh, centroid, nrm) - &
-                plane_offset(fa(:, 1, i), nd, centroid, nrm)
-            wh = covered(fb(:, :, j), s0, nrm) / sp_b(nodeh)
-            wd = covered(fa(:, :, i), s0, nrm) / sp_a(noded)
-          end if
-          ! Deeper than half a segment: the far side of a body, not contact.
-          if (pen > 0.5_rk * p%size) cycle
-          call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm)
+    associate(ga => p%ga, gb => p%gb)
+      do m = 1, size(p%segment_pairs, 2)
+        sa = p%segment_pairs(1, m)
+        sb = p%segment_pairs(2, m)
+        na = ga%quad_normal(:, sa)
+        nb = gb%quad_normal(:, sb)
+        if (.not. dot_product(na, nb) < FACING) cycle
+        ! Hitting side: surface a, or in self-contact the lower segment id.
+        a_hits = .true.
+        if (p%self) a_hits = p%a%segment_id(sa) < p%b%segment_id(sb)
+        if (a_hits) then
+          nrm = na - nb
+        else
+          nrm = nb - na
+        end if
+        nrm = nrm / norm2(nrm)
+        call tangent_basis(nrm, t1, t2)
+        origin = 0.25_rk * (ct%x(:, p%a%segments(1, sa)) + ct%x(:, p%a%segments(2, sa)) + &
+            ct%x(:, p%a%segments(3, sa)) + ct%x(:, p%a%segments(4, sa)))
+        ! Segments whose projections do not meet have no overlap.
+        call segment_box(ct%x, p%a%segments(:, sa), origin, t1, t2, seg_a)
+        call segment_box(ct%x, p%b%segments(:, sb), origin, t1, t2, seg_b)
+        if (.not. boxes_meet(seg_a, seg_b)) cycle
+        call project_facets(ga%facets(:, :, :, sa), origin, t1, t2, a2, box_a)
+        call project_facets(gb%facets(:, :, :, sb), origin, t1, t2, b2, box_b)
+        do i = 1, SEGMENT_FACET_COUNT
+          if (.not. boxes_meet(box_a(:, i), seg_b)) cycle
+          do j = 1, SEGMENT_FACET_COUNT
+            if (.not. boxes_meet(box_a(:, i), box_b(:, j))) cycle
+            if (a_hits) then
+              call triangle_overlap_2d(a2(:, :, i), b2(:, :, j), s0, centre2)
+            else
+              call triangle_overlap_2d(b2(:, :, j), a2(:, :, i), s0, centre2)
+            end if
+            if (.not. s0 > AREA_TOLERANCE * min(ga%area(i, sa), gb%area(j, sb))) cycle
+            centroid = origin + centre2(1) * t1 + centre2(2) * t2
+            if (a_hits) then
+              nodeh = p%a%segments(FACET_CORNER(i), sa)
+              noded = p%b%segments(FACET_CORNER(j), sb)
+              pen = plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), centroid, nrm) - &
+                  plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), centroid, nrm)
+              wh = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(nodeh)
+              wd = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(noded)
+            else
+              nodeh = p%b%segments(FACET_CORNER(j), sb)
+              noded = p%a%segments(FACET_CORNER(i), sa)
+              pen = plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), centroid, nrm) - &
+                  plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), centroid, nrm)
+              wh = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(nodeh)
+              wd = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(noded)
+            end if
+            ! Deeper than half a segment: the far side of a body, not contact.
+            if (pen > 0.5_rk * p%size) cycle
+            call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm)
+          end do
         end do
       end do
-    end do
+    end associate
   end subroutine dlm_geometry
 
   !> Append one facet pair to the interface's cache, growing it when full.
@@ -600,13 +665,12 @@ contains
   !> the shares of a node fully covered sum to one to round-off even when its
   !> facets are not normal to nrm (a warped or tilted surface), so that a
   !> matching interface acts exactly on whole nodes.
-  pure real(rk) function covered(facet, s0, nrm) result(area)
-    real(rk), intent(in) :: facet(3, 3), s0, nrm(3)
-    real(rk) :: vector(3), projected
-    vector = triangle_vector_area(facet)
-    projected = abs(dot_product(vector, nrm))
+  pure real(rk) function covered(facet_normal, s0, nrm) result(area)
+    real(rk), intent(in) :: facet_normal(3), s0, nrm(3)
+    real(rk) :: projected
+    projected = abs(dot_product(facet_normal, nrm))
     area = s0
-    if (projected > 0.0_rk) area = s0 * norm2(vector) / projected
+    if (projected > 0.0_rk) area = s0 / projected
   end function covered
 
   !> Distance along nrm from point c to the plane through q with normal n
@@ -619,6 +683,95 @@ contains
     if (abs(denominator) > 1.0e-3_rk) t = dot_product(q - c, n) / denominator
   end function plane_offset
 
+  !> DAM geometry at x^n (once per cycle, in the predictor; both stages use
+  !> x^n): the primary pairs within the capture distance of a full step, the
+  !> facet overlaps of each slave node's facets with the facets of its primary
+  !> segment's neighbourhood (projected on the slave facet's plane), and the
+  !> RBF put-back weights.
+  subroutine dam_geometry(ct, p, dt)
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    real(rk), intent(in) :: dt !< the full step
+    real(rk) :: nf(3), s0, centroid(3), t1(3), t2(3), box_s(4), box_m(4), seg_m(4), pos(3, 4)
+    real(rk) :: speed, capture
+    integer :: q, n, k, e, ss, sm, i, j, c, ncand, nex
+    integer :: candidates(64)
+    logical :: ok
+
+    call geometry_update(ct%x, p%a, p%ga)
+    call geometry_update(ct%x, p%b, p%gb)
+    speed = 0.0_rk
+    do i = 1, ct%ncn
+      speed = max(speed, norm2(ct%v(:, i)))
+    end do
+    capture = capture_of(p, 2.0_rk * speed, dt)
+    call primary_pairs(ct%x, p%b, p%test_pairs, capture, 0.5_rk * p%size, p%primary)
+    if (allocated(p%rbf)) deallocate(p%rbf, p%ex_start)
+    allocate(p%rbf(4, size(p%primary)), p%ex_start(size(p%primary) + 1))
+    if (.not. allocated(p%ex_master)) allocate(p%ex_master(64), p%ex_real(3, 64))
+    nex = 0
+    associate(gs => p%ga, gm => p%gb)
+      do q = 1, size(p%primary)
+        p%ex_start(q) = nex + 1
+        n = p%primary(q)%node
+        do k = 1, 4
+          pos(:, k) = ct%x(:, p%b%segments(k, p%primary(q)%segment))
+        end do
+        call rbf_weights(pos, ct%x(:, n), p%primary(q)%normal, p%rbf(:, q), ok)
+        if (.not. ok) call bilinear_shape(p%primary(q)%xi, p%primary(q)%eta, p%rbf(:, q))
+        call master_neighbourhood(p%b, p%primary(q)%segment, candidates, ncand)
+        k = surface_node_index(p%a, int(n, ik))
+        do e = p%a%node_start(k), p%a%node_start(k + 1) - 1
+          ss = p%a%node_segments(e)
+          c = findloc(p%a%segments(:, ss), n, dim=1)
+          do i = 2 * c - 1, 2 * c
+            nf = gs%normal(:, i, ss)
+            call tangent_basis(nf, t1, t2)
+            call facet_box(gs%facets(:, :, i, ss), t1, t2, box_s)
+            do j = 1, ncand
+              sm = candidates(j)
+              call segment_box(ct%x, p%b%segments(:, sm), [0.0_rk, 0.0_rk, 0.0_rk], t1, t2, &
+                  seg_m)
+              if (.not. boxes_meet(box_s, seg_m)) cycle
+              do k = 1, SEGMENT_FACET_COUNT
+                if (.not. dot_product(nf, gm%normal(:, k, sm)) < FACING) cycle
+                call facet_box(gm%facets(:, :, k, sm), t1, t2, box_m)
+                if (.not. boxes_meet(box_s, box_m)) cycle
+                call triangle_overlap(gs%facets(:, :, i, ss), gm%facets(:, :, k, sm), nf, s0, &
+                    centroid)
+                if (.not. s0 > AREA_TOLERANCE * min(gs%area(i, ss), gm%area(k, sm))) cycle
+                call add_exchange(p%b%segments(FACET_CORNER(k), sm), &
+                    covered(gm%normal(:, k, sm), s0, nf) / gm%nodal_area( &
+                    p%b%segments(FACET_CORNER(k), sm)), s0 / gs%nodal_area(n), s0)
+              end do
+            end do
+          end do
+        end do
+      end do
+    end associate
+    p%ex_start(size(p%primary) + 1) = nex + 1
+
+  contains
+
+    subroutine add_exchange(m, wm, ws, s0)
+      integer(ik), intent(in) :: m
+      real(rk), intent(in) :: wm, ws, s0
+      integer, allocatable :: grown_master(:)
+      real(rk), allocatable :: grown_real(:, :)
+      if (nex == size(p%ex_master)) then
+        allocate(grown_master(2 * nex), grown_real(3, 2 * nex))
+        grown_master(:nex) = p%ex_master(:nex)
+        grown_real(:, :nex) = p%ex_real(:, :nex)
+        call move_alloc(grown_master, p%ex_master)
+        call move_alloc(grown_real, p%ex_real)
+      end if
+      nex = nex + 1
+      p%ex_master(nex) = m
+      p%ex_real(:, nex) = [wm, ws, s0]
+    end subroutine add_exchange
+
+  end subroutine dam_geometry
+
   !> DAM: exchange of mass, force and momentum over the facet overlaps of each
   !> enforced slave node with the master facets (CONTACT.md 3.3-3.5), then the
   !> put-back-on of the slave's normal velocity by RBF interpolation of the
@@ -628,48 +781,35 @@ contains
     type(contact_t), intent(inout) :: ct
     type(interface_t), intent(inout) :: p
     real(rk), intent(in) :: dt !< the stage's step
-    logical, intent(in) :: final !< update the diagnostics
-    type(primary_pair_t), allocatable :: primary(:)
-    real(rk), allocatable :: sp_s(:), sp_m(:), mbar(:), fbar(:, :), pbar(:, :), nmaster(:, :)
-    real(rk), allocatable :: vnew(:, :)
+    logical, intent(in) :: final !< the corrector: update the diagnostics
+    real(rk), allocatable :: mbar(:), fbar(:, :), pbar(:, :), nmaster(:, :), vnew(:, :)
     logical, allocatable :: enforced(:), touched(:)
-    real(rk) :: fs(3, 3, SEGMENT_FACET_COUNT), fm(3, 3, SEGMENT_FACET_COUNT)
-    real(rk) :: nrm(3), nf(3), s0, centroid(3), shape(4), am, vm, as, vs, gfree, capture, speed
-    real(rk) :: pos(3, 4), weights(4), target, pen, pen_max, pen_sq, sum_force, momentum(3)
-    real(rk) :: unit(3), vn, wm, ws, t1(3), t2(3), box_s(4), box_m(4)
-    integer :: q, n, k, e, ss, sm, i, j, m, c, ncand, active, released, npen
-    integer :: candidates(64)
-    logical :: ok
+    real(rk) :: nrm(3), shape(4), am, vm, as, vs, gfree, wm, ws, s0
+    real(rk) :: target, pen, pen_max, pen_sq, sum_force, momentum(3), unit(3), vn
+    integer :: q, n, k, e, i, m, active, released, npen
 
-    allocate(sp_s(ct%ncn), sp_m(ct%ncn), mbar(ct%ncn), fbar(3, ct%ncn), pbar(3, ct%ncn))
-    allocate(nmaster(3, ct%ncn), vnew(3, ct%ncn), enforced(ct%ncn), touched(ct%ncn))
-    sp_s = 0.0_rk
-    sp_m = 0.0_rk
-    call nodal_areas(ct%x, p%a, sp_s)
-    call nodal_areas(ct%x, p%b, sp_m)
-    speed = 0.0_rk
-    do i = 1, ct%ncn
-      speed = max(speed, norm2(ct%v(:, i)))
-    end do
-    capture = capture_of(p, 2.0_rk * speed, dt)
-    call primary_pairs(ct%x, p%b, p%test_pairs, capture, 0.5_rk * p%size, primary)
+    ! The predictor's step is half the cycle's.
+    if (.not. final .or. .not. allocated(p%primary)) call dam_geometry(ct, p, &
+        merge(dt, 2.0_rk * dt, final))
+    allocate(mbar(ct%ncn), fbar(3, ct%ncn), pbar(3, ct%ncn), nmaster(3, ct%ncn))
+    allocate(vnew(3, ct%ncn), enforced(ct%ncn), touched(ct%ncn))
 
     ! Which slave nodes are enforced: the free motion would close the gap.
     enforced = .false.
-    do q = 1, size(primary)
-      n = primary(q)%node
-      nrm = primary(q)%normal
-      call bilinear_shape(primary(q)%xi, primary(q)%eta, shape)
+    do q = 1, size(p%primary)
+      n = p%primary(q)%node
+      nrm = p%primary(q)%normal
+      call bilinear_shape(p%primary(q)%xi, p%primary(q)%eta, shape)
       am = 0.0_rk
       vm = 0.0_rk
       do k = 1, 4
-        m = p%b%segments(k, primary(q)%segment)
+        m = p%b%segments(k, p%primary(q)%segment)
         am = am + shape(k) * dot_product(ct%f(:, m), nrm) / ct%mass(m)
         vm = vm + shape(k) * dot_product(ct%v(:, m), nrm)
       end do
       as = dot_product(ct%f(:, n), nrm) / ct%mass(n)
       vs = dot_product(ct%v(:, n), nrm)
-      gfree = primary(q)%gap + dt * (vs - vm) + 0.5_rk * dt * dt * (as - am)
+      gfree = p%primary(q)%gap + dt * (vs - vm) + 0.5_rk * dt * dt * (as - am)
       ! Release (3.7): the free motion at t^n+1 separates the slave from the
       ! master (tension); a residual penetration does not hold it. This is
       ! the rule of the unilateral rigid wall, so the mirror test holds.
@@ -677,8 +817,7 @@ contains
       if (gfree < 0.0_rk) enforced(n) = .true.
     end do
 
-    ! Exchange over the facet overlaps, projected on the plane of the slave's
-    ! facet, with every facet of the primary segment's neighbourhood.
+    ! Exchange over the cached facet overlaps.
     mbar = ct%mass
     fbar = ct%f
     do i = 1, ct%ncn
@@ -686,43 +825,22 @@ contains
     end do
     nmaster = 0.0_rk
     touched = .false.
-    do q = 1, size(primary)
-      n = primary(q)%node
+    do q = 1, size(p%primary)
+      n = p%primary(q)%node
       if (.not. enforced(n)) cycle
-      call master_neighbourhood(p%b, primary(q)%segment, candidates, ncand)
-      k = surface_node_index(p%a, int(n, ik))
-      do e = p%a%node_start(k), p%a%node_start(k + 1) - 1
-        ss = p%a%node_segments(e)
-        c = findloc(p%a%segments(:, ss), n, dim=1)
-        call segment_facets(ct%x(:, p%a%segments(:, ss)), fs)
-        do i = 2 * c - 1, 2 * c
-          nf = triangle_unit_normal(fs(:, :, i))
-          call tangent_basis(nf, t1, t2)
-          call facet_box(fs(:, :, i), t1, t2, box_s)
-          do j = 1, ncand
-            sm = candidates(j)
-            call segment_facets(ct%x(:, p%b%segments(:, sm)), fm)
-            do k = 1, SEGMENT_FACET_COUNT
-              call facet_box(fm(:, :, k), t1, t2, box_m)
-              if (.not. boxes_meet(box_s, box_m)) cycle
-              if (.not. dot_product(nf, triangle_unit_normal(fm(:, :, k))) < FACING) cycle
-              call triangle_overlap(fs(:, :, i), fm(:, :, k), nf, s0, centroid)
-              if (.not. s0 > AREA_TOLERANCE * min(norm2(triangle_vector_area(fs(:, :, i))), &
-                  norm2(triangle_vector_area(fm(:, :, k))))) cycle
-              m = p%b%segments(FACET_CORNER(k), sm)
-              wm = covered(fm(:, :, k), s0, nf) / sp_m(m)
-              ws = s0 / sp_s(n)
-              mbar(n) = mbar(n) + ct%mass(m) * wm
-              mbar(m) = mbar(m) + ct%mass(n) * ws
-              fbar(:, n) = fbar(:, n) + ct%f(:, m) * wm
-              fbar(:, m) = fbar(:, m) + ct%f(:, n) * ws
-              pbar(:, n) = pbar(:, n) + ct%mass(m) * ct%v(:, m) * wm
-              pbar(:, m) = pbar(:, m) + ct%mass(n) * ct%v(:, n) * ws
-              nmaster(:, m) = nmaster(:, m) + s0 * primary(q)%normal
-              touched(m) = .true.
-            end do
-          end do
-        end do
+      do e = p%ex_start(q), p%ex_start(q + 1) - 1
+        m = p%ex_master(e)
+        wm = p%ex_real(1, e)
+        ws = p%ex_real(2, e)
+        s0 = p%ex_real(3, e)
+        mbar(n) = mbar(n) + ct%mass(m) * wm
+        mbar(m) = mbar(m) + ct%mass(n) * ws
+        fbar(:, n) = fbar(:, n) + ct%f(:, m) * wm
+        fbar(:, m) = fbar(:, m) + ct%f(:, n) * ws
+        pbar(:, n) = pbar(:, n) + ct%mass(m) * ct%v(:, m) * wm
+        pbar(:, m) = pbar(:, m) + ct%mass(n) * ct%v(:, n) * ws
+        nmaster(:, m) = nmaster(:, m) + s0 * p%primary(q)%normal
+        touched(m) = .true.
       end do
     end do
 
@@ -744,23 +862,18 @@ contains
     pen_max = 0.0_rk
     pen_sq = 0.0_rk
     sum_force = 0.0_rk
-    do q = 1, size(primary)
-      n = primary(q)%node
+    do q = 1, size(p%primary)
+      n = p%primary(q)%node
       if (.not. enforced(n)) cycle
       active = active + 1
-      nrm = primary(q)%normal
-      do k = 1, 4
-        pos(:, k) = ct%x(:, p%b%segments(k, primary(q)%segment))
-      end do
-      call rbf_weights(pos, ct%x(:, n), nrm, weights, ok)
-      if (.not. ok) call bilinear_shape(primary(q)%xi, primary(q)%eta, weights)
+      nrm = p%primary(q)%normal
       target = 0.0_rk
       do k = 1, 4
-        target = target + weights(k) * dot_product(vnew(:, p%b%segments(k, primary(q)%segment)), &
-            nrm)
+        target = target + p%rbf(k, q) * dot_product(vnew(:, p%b%segments(k, &
+            p%primary(q)%segment)), nrm)
       end do
       vnew(:, n) = vnew(:, n) + (target - dot_product(vnew(:, n), nrm)) * nrm
-      pen = -primary(q)%gap
+      pen = -p%primary(q)%gap
       if (pen > 0.0_rk) then
         pen_max = max(pen_max, pen)
         pen_sq = pen_sq + pen * pen
@@ -775,10 +888,10 @@ contains
       ct%fc(:, i) = ct%fc(:, i) + ct%mass(i) * (vnew(:, i) - ct%v(:, i)) / dt - ct%f(:, i)
       momentum = momentum + ct%mass(i) * (vnew(:, i) - ct%v(:, i)) - dt * ct%f(:, i)
     end do
-    do q = 1, size(primary)
-      n = primary(q)%node
+    do q = 1, size(p%primary)
+      n = p%primary(q)%node
       if (enforced(n)) sum_force = sum_force + max(dot_product(ct%mass(n) * &
-          (vnew(:, n) - ct%v(:, n)) / dt - ct%f(:, n), primary(q)%normal), 0.0_rk)
+          (vnew(:, n) - ct%v(:, n)) / dt - ct%f(:, n), p%primary(q)%normal), 0.0_rk)
     end do
     if (.not. final) return
     released = count(p%was_active .and. .not. (enforced .or. touched))

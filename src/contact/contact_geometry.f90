@@ -36,7 +36,7 @@ module contact_geometry
   private
   public :: segment_facets, segment_area, corner_areas, quad_unit_normal
   public :: triangle_vector_area, triangle_unit_normal
-  public :: triangle_overlap, triangle_overlap_area
+  public :: triangle_overlap, triangle_overlap_area, triangle_overlap_2d
   public :: SEGMENT_FACET_COUNT, FACET_CORNER, tangent_basis
 
   !> Number of facets of one segment.
@@ -163,9 +163,8 @@ contains
     real(rk), intent(out) :: area !< overlap area, >= 0
     real(rk), intent(out) :: centroid(3) !< overlap centroid, in the projection plane
     real(rk) :: origin(3), unit_normal(3), tangent1(3), tangent2(3), length
-    real(rk) :: a2(2, 3), b2(2, 3), polygon(2, MAX_VERTICES), centre2(2)
-    integer :: k, count
-    logical :: valid
+    real(rk) :: a2(2, 3), b2(2, 3), centre2(2)
+    integer :: k
 
     origin = (a(:, 1) + a(:, 2) + a(:, 3)) / 3.0_rk
     area = 0.0_rk
@@ -180,14 +179,31 @@ contains
       b2(1, k) = dot_product(b(:, k) - origin, tangent1)
       b2(2, k) = dot_product(b(:, k) - origin, tangent2)
     end do
-    call make_counter_clockwise(a2, valid)
-    if (.not. valid) return
-    call make_counter_clockwise(b2, valid)
-    if (.not. valid) return
-    call clip_triangle(b2, a2, polygon, count)
-    call polygon_area_centroid(polygon, count, area, centre2)
+    call triangle_overlap_2d(a2, b2, area, centre2)
     centroid = origin + centre2(1) * tangent1 + centre2(2) * tangent2
   end subroutine triangle_overlap
+
+  !> Area and centroid of the overlap of two triangles already projected on a
+  !> plane (2D coordinates, any orientation). Zero area and the centroid (0, 0)
+  !> when either triangle is degenerate.
+  pure subroutine triangle_overlap_2d(a2, b2, area, centre2)
+    real(rk), intent(in) :: a2(2, 3) !< the clipper
+    real(rk), intent(in) :: b2(2, 3) !< the clipped
+    real(rk), intent(out) :: area, centre2(2)
+    real(rk) :: a(2, 3), b(2, 3), polygon(2, MAX_VERTICES)
+    integer :: count
+    logical :: valid
+    area = 0.0_rk
+    centre2 = 0.0_rk
+    a = a2
+    b = b2
+    call make_counter_clockwise(a, valid)
+    if (.not. valid) return
+    call make_counter_clockwise(b, valid)
+    if (.not. valid) return
+    call clip_triangle(b, a, polygon, count)
+    call polygon_area_centroid(polygon, count, area, centre2)
+  end subroutine triangle_overlap_2d
 
   !> Orthonormal tangents with tangent1 x tangent2 = normal (normal of unit length).
   pure subroutine tangent_basis(normal, tangent1, tangent2)
@@ -232,17 +248,18 @@ contains
     real(rk) :: work(2, MAX_VERTICES), distance(MAX_VERTICES), start(2), edge(2), s
     integer :: e, i, j, n
 
-    polygon = 0.0_rk
     polygon(:, 1:3) = subject
     count = 3
     do e = 1, 3
       start = clipper(:, e)
       edge = clipper(:, mod(e, 3) + 1) - start
       n = count
-      work(:, 1:n) = polygon(:, 1:n)
       do i = 1, n
-        distance(i) = edge(1) * (work(2, i) - start(2)) - edge(2) * (work(1, i) - start(1))
+        distance(i) = edge(1) * (polygon(2, i) - start(2)) - edge(2) * (polygon(1, i) - start(1))
       end do
+      ! Nothing outside this edge: the polygon is unchanged.
+      if (all(distance(1:n) >= 0.0_rk)) cycle
+      work(:, 1:n) = polygon(:, 1:n)
       count = 0
       do i = 1, n
         j = mod(i, n) + 1
