@@ -34,6 +34,14 @@
 !> the closest-point direction, oriented outward (gap >= 0 when the node is on
 !> the outer side of the segment).
 !>
+!> A penetrating node whose normal projection falls just outside the segment
+!> (|xi|, |eta| <= 1 + EXTENSION_TOLERANCE) is on the face: a slave node on a
+!> symmetry plane lies on the master surface's boundary edge, and once it
+!> penetrates a curved master its projection leaves the segment by round-off
+!> or by the curvature; classed as an edge or corner it would be rejected
+!> (penetrating edge and corner pairs are ambiguous) and sink unchecked
+!> (seen on the Taylor rod's axis node, 0.2 cm deep in a steel anvil).
+!>
 !> Primary pair. Among a node's test pairs that are in contact (contact_kind),
 !> the one with the smallest |gap| wins; equal |gap| goes to the lower segment
 !> global id (surface%segment_id), so the result does not depend on the order
@@ -64,6 +72,8 @@ module contact_search
   integer, parameter, public :: LOCATION_CORNER = 3
   !> A projection with |xi|, |eta| <= 1 + NATURAL_TOLERANCE is inside.
   real(rk), parameter, public :: NATURAL_TOLERANCE = 1.0e-6_rk
+  !> A penetrating node's projection within 1 + this is still on the face.
+  real(rk), parameter, public :: EXTENSION_TOLERANCE = 0.05_rk
   !> Newton stops when the natural-coordinate step is below this.
   real(rk), parameter :: NEWTON_TOLERANCE = 1.0e-13_rk
   integer, parameter :: NEWTON_MAX = 30
@@ -415,15 +425,17 @@ contains
         exit
       end if
     end do
-    if (converged .and. max(abs(xi), abs(eta)) <= 1.0_rk + NATURAL_TOLERANCE) then
+    if (converged .and. max(abs(xi), abs(eta)) <= 1.0_rk + EXTENSION_TOLERANCE) then
       reference = bilinear_normal(xi, eta)
       if (any(reference /= 0.0_rk)) then
         point = centre + xi * a + eta * b + xi * eta * d
-        location = LOCATION_FACE
-        local = 0
-        normal = reference
-        gap = dot_product(q - point, normal)
-        return
+        gap = dot_product(q - point, reference)
+        if (max(abs(xi), abs(eta)) <= 1.0_rk + NATURAL_TOLERANCE .or. gap < 0.0_rk) then
+          location = LOCATION_FACE
+          local = 0
+          normal = reference
+          return
+        end if
       end if
     end if
 

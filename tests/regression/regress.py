@@ -32,6 +32,12 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   interface --deck D --np N --zones-tol 2 [compare args]
                                       two-block Riemann problem: the material interface
                                       and the shock within 2 local zone widths of exact
+  twowave, shell_stop, stopfile, bars, mirror, patch: see their docstrings
+  relative --deck D --reference R --problem P --key K --tol T [--max KEY=V] [--pair NAME]
+                                      contact run's K within (1 + T) of the reference's
+  shape    --deck D --reference R --tol T
+                                      Taylor rod: final length and foot diameter of D
+                                      within T (relative) of R's
 Prints 'N passed, M failed' and exits 1 on failure.
 """
 import argparse
@@ -539,7 +545,13 @@ def cmd_relative(args):
     a, b = got.get(args.key, float("nan")), ref.get(args.key, float("nan"))
     check("%s = %.4e vs reference %.4e: ratio %.4f <= %.3f" % (args.key, a, b, a / b,
           1 + args.tol), a <= (1 + args.tol) * b)
-    if args.pair:
+    for spec in args.max or []:
+        k, v = spec.split("=")
+        value = got.get(k, float("nan"))
+        check("contact run: %s = %.4e <= %s (reference %.4e)" % (k, value, v,
+              ref.get(k, float("nan"))), value <= float(v))
+    report_contact_energy(wd)
+    if args.pair != "none":
         header, rows = read_history(wd)
         active = rows[:, header.index(args.pair + "_active")]
         released = rows[:, header.index(args.pair + "_released")]
@@ -548,6 +560,51 @@ def cmd_relative(args):
         check("no node released (%d)" % released.sum(), released.sum() == 0)
         pen = rows[:, header.index(args.pair + "_pen_max")]
         print("largest penetration %.3e" % pen.max())
+
+
+def report_contact_energy(workdir):
+    """Print the energy the contact forces did (relative to the initial total)
+    and the largest energy_error of the balance that books it."""
+    import numpy as np
+    header, rows = read_history(workdir)
+    e0 = rows[0, header.index("total_energy")]
+    if "contact_work" in header:
+        print("contact work %.3e of the initial total energy"
+              % (rows[-1, header.index("contact_work")] / e0))
+    print("largest |energy_error| / E0 %.2e"
+          % (np.abs(rows[:, header.index("energy_error")]).max() / abs(e0)))
+
+
+def rod_shape(path):
+    """Final length (z extent) and largest diameter (2 max sqrt(x^2 + y^2)) of
+    the rod, the block of the first zone, in a dump."""
+    import numpy as np
+    import dump
+    d = dump.load(path)
+    rod = np.unique(d["connectivity"][d["block"] == d["block"][0]].ravel())
+    x = d["coordinates"][rod]
+    return x[:, 2].max() - x[:, 2].min(), 2.0 * np.hypot(x[:, 0], x[:, 1]).max()
+
+
+def cmd_shape(args):
+    """Taylor rods: the final length L and foot diameter D of --deck are within
+    --tol (relative) of those of --reference."""
+    wd_ref = os.path.join(args.workdir, "reference")
+    wd = os.path.join(args.workdir, "run")
+    code, out, err = run(args, args.np, wd_ref, args.reference)
+    check("reference run exits 0", code == 0, err[-2000:])
+    code2, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code2 == 0, err[-2000:])
+    if code or code2:
+        return
+    lr, dr = rod_shape(final_dump(wd_ref))
+    l, d = rod_shape(final_dump(wd))
+    check("final length %.4f vs reference %.4f: %+.2f%% within %.1f%%"
+          % (l, lr, 100 * (l / lr - 1), 100 * args.tol), abs(l / lr - 1) <= args.tol)
+    check("foot diameter %.4f vs reference %.4f: %+.2f%% within %.1f%%"
+          % (d, dr, 100 * (d / dr - 1), 100 * args.tol), abs(d / dr - 1) <= args.tol)
+    report_contact_energy(wd)
+    print(out.strip().splitlines()[-2] if out.strip() else "")
 
 
 def cmd_twowave(args):
@@ -599,29 +656,46 @@ def cmd_twowave(args):
           % (plastic_lab, expected, u_measured), abs(plastic_lab / expected - 1) <= 0.03)
 
 
+def inner_radius_history(wd, origin):
+    """(time, mean radius) over the dumps of the nodes at radius origin at t = 0."""
+    import numpy as np
+    import dump
+    files = sorted(glob.glob(os.path.join(wd, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
+    d0 = dump.load(files[0])
+    inner = np.abs(np.linalg.norm(d0["coordinates"], axis=1) - origin) < 1e-9 * origin
+    history = []
+    for path in files:
+        d = dump.load(path)
+        history.append((float(d["attrs"]["time"]),
+                        float(np.linalg.norm(d["coordinates"], axis=1)[inner].mean())))
+    return history
+
+
 def cmd_shell_stop(args):
     """Imploding shell: the inner surface (nodes at radius --origin at t = 0)
     stops at --target within --tol (absolute); the stopping radius is the
     smallest mean radius over the dumps."""
     import numpy as np
     import dump
+    target = args.target
+    if args.reference:
+        wd_ref = os.path.join(args.workdir, "reference")
+        code, out, err = run(args, args.np, wd_ref, args.reference)
+        check("reference run exits 0", code == 0, err[-2000:])
+        if code != 0:
+            return
+        target = min(inner_radius_history(wd_ref, args.origin), key=lambda h: h[1])[1]
+        print("  reference (single shell) stops at r = %.4f" % target)
     wd = os.path.join(args.workdir, "shell")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
     if code != 0:
         return
-    files = sorted(glob.glob(os.path.join(wd, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
-    d0 = dump.load(files[0])
-    inner = np.abs(np.linalg.norm(d0["coordinates"], axis=1) - args.origin) < 1e-9 * args.origin
-    history = []
-    for path in files:
-        d = dump.load(path)
-        history.append((float(d["attrs"]["time"]),
-                        float(np.linalg.norm(d["coordinates"], axis=1)[inner].mean())))
+    history = inner_radius_history(wd, args.origin)
     t_stop, r_stop = min(history, key=lambda h: h[1])
     print("  inner radius history: " + ", ".join("%.0f:%.3f" % h for h in history))
-    check("inner surface stops at r = %.4f (t = %.1f) vs %.2f within %.2f"
-          % (r_stop, t_stop, args.target, args.tol), abs(r_stop - args.target) <= args.tol)
+    check("inner surface stops at r = %.4f (t = %.1f) vs %.4f within %.2f"
+          % (r_stop, t_stop, target, args.tol), abs(r_stop - target) <= args.tol)
     import exact_verney
     a_stop, t_end, a, t = exact_verney.verney()
     times = np.array([h[0] for h in history])
@@ -630,6 +704,8 @@ def cmd_shell_stop(args):
     worst = float(np.max(np.abs(radii / exact - 1.0)))
     check("inner radius history within 2%% of the rigid-plastic energy balance (worst %.2f%%)"
           % (100 * worst), worst <= 0.02)
+    if args.reference:
+        report_contact_energy(wd)
 
 
 def cmd_stopfile(args):
@@ -673,7 +749,8 @@ def main():
     p.add_argument("command", choices=["bitwise", "restart", "energy", "failure", "compare",
                                         "convergence", "window", "interface", "stability",
                                         "wavefront", "rebound", "twowave", "shell_stop",
-                                        "stopfile", "bars", "mirror", "patch", "relative"])
+                                        "stopfile", "bars", "mirror", "patch", "relative",
+                                        "shape"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
