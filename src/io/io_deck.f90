@@ -105,7 +105,8 @@ contains
       keys = [character(len=KEY_LEN) :: 'type', 'x', 'y', 'z', 'nx', 'ny', 'nz', 'ratio_x', &
           'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb', 'radius', 'length', 'z0', 'sector', &
           'n_core', 'n_radial', 'n_axial', 'axial_ratio', 'core_fraction', 'ri', 'ro', 'n_theta', &
-          'axis', 'origin', 'n_patch', 'radial_ratio', 'file', 'name', 'offset', 'block']
+          'axis', 'origin', 'radial_reference', 'n_patch', 'radial_ratio', 'file', 'name', &
+          'offset', 'block']
     case ('material')
       keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma', 'library', 'rho0', 'c0', 's1', &
           'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress']
@@ -442,6 +443,7 @@ contains
     integer :: nx(MAX_INTERVALS), ny(MAX_INTERVALS), nz(MAX_INTERVALS)
     real(rk) :: skew_amplitude, perturb
     real(rk) :: radius, length, z0, axial_ratio, core_fraction, ri, ro, axis(3), origin(3)
+    real(rk) :: radial_reference(3)
     real(rk) :: radial_ratio
     integer :: n_core, n_radial, n_axial, n_theta, n_patch
     character(len=PATH_LEN) :: file
@@ -453,7 +455,7 @@ contains
     logical :: box_keys, curved_keys, exists
     namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude, perturb, &
         radius, length, z0, sector, n_core, n_radial, n_axial, axial_ratio, core_fraction, ri, ro, &
-        n_theta, axis, origin, n_patch, radial_ratio, file, name, offset, block
+        n_theta, axis, origin, radial_reference, n_patch, radial_ratio, file, name, offset, block
 
     type = 'box'
     x = UNSET
@@ -481,6 +483,7 @@ contains
     n_theta = -1
     axis = UNSET
     origin = UNSET
+    radial_reference = UNSET
     n_patch = -1
     radial_ratio = UNSET
     file = ''
@@ -539,6 +542,7 @@ contains
       if (axial_ratio /= UNSET) part%tube%axial_ratio = axial_ratio
       if (all(axis /= UNSET)) part%tube%axis = axis
       if (all(origin /= UNSET)) part%tube%origin = origin
+      if (all(radial_reference /= UNSET)) part%tube%radial_reference = radial_reference
     case ('shell')
       if (box_keys) call status%add(trim(where)//': type: ''shell'' does not take box keys (x, nx, ...)')
       if (ri /= UNSET) part%shell%ri = ri

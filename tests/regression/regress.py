@@ -35,6 +35,9 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   twowave, shell_stop, stopfile, bars, mirror, patch: see their docstrings
   relative --deck D --reference R --problem P --key K --tol T [--max KEY=V] [--pair NAME]
                                       contact run's K within (1 + T) of the reference's
+  impact   --deck D --pair NAME --tol T --max-pen P [--momentum-tol M]
+                                      two bodies in contact: energy balance, penetration,
+                                      momentum; final block velocities reported
   shape    --deck D --reference R --tol T
                                       Taylor rod: final length and foot diameter of D
                                       within T (relative) of R's
@@ -607,6 +610,47 @@ def cmd_shape(args):
     print(out.strip().splitlines()[-2] if out.strip() else "")
 
 
+def cmd_impact(args):
+    """Two bodies through contact (pair --pair): the energy balance closes to
+    --tol, the largest penetration stays below --max-pen, the total momentum
+    stays within --momentum-tol of its initial value (relative to its norm;
+    give it for DLM, exact); reports the contact work and the final
+    mass-weighted velocity of each block."""
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "impact")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    header, rows = read_history(wd)
+    e0 = abs(rows[0, header.index("total_energy")])
+    worst = np.abs(rows[:, header.index("energy_error")]).max()
+    check("energy balance |error| %.2e <= %.1e" % (worst, args.tol), worst <= args.tol)
+    pen = rows[:, header.index(args.pair + "_pen_max")].max()
+    check("largest penetration %.3e <= %.3e" % (pen, args.max_pen), pen <= args.max_pen)
+    p = rows[:, [header.index("momentum_" + c) for c in "xyz"]]
+    drift = np.linalg.norm(p - p[0], axis=1).max() / max(np.linalg.norm(p[0]), 1e-300)
+    if args.momentum_tol > 0.0:
+        check("momentum drift %.2e <= %.1e" % (drift, args.momentum_tol),
+              drift <= args.momentum_tol)
+    else:
+        print("momentum drift %.2e of the initial momentum" % drift)
+    active = rows[:, header.index(args.pair + "_active")] > 0
+    t = rows[:, header.index("time")]
+    if active.any():
+        print("contact from t = %.2f to t = %.2f" % (t[active][0], t[active][-1]))
+    print("contact work %.3e of the initial total energy"
+          % (rows[-1, header.index("contact_work")] / e0))
+    d = dump.load(final_dump(wd))
+    for b in np.unique(d["block"]):
+        nodes = np.unique(d["connectivity"][d["block"] == b].ravel())
+        m = d["node_mass"][nodes]
+        v = (m[:, None] * d["node_velocity"][nodes]).sum(axis=0) / m.sum()
+        print("block %d final mean velocity (%.4e, %.4e, %.4e)" % (b, v[0], v[1], v[2]))
+    print(out.strip().splitlines()[-2] if out.strip() else "")
+
+
 def cmd_twowave(args):
     """Elastic-plastic piston problem: elastic precursor and plastic wave.
 
@@ -750,7 +794,7 @@ def main():
                                         "convergence", "window", "interface", "stability",
                                         "wavefront", "rebound", "twowave", "shell_stop",
                                         "stopfile", "bars", "mirror", "patch", "relative",
-                                        "shape"])
+                                        "shape", "impact"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -789,6 +833,7 @@ def main():
     p.add_argument("--final-left", type=float)
     p.add_argument("--final-right", type=float)
     p.add_argument("--momentum-tol", type=float, default=0.0)
+    p.add_argument("--max-pen", type=float, default=float("inf"))
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
     args = p.parse_args()
     args.deck = os.path.abspath(args.deck)
