@@ -7,6 +7,7 @@ module app_setup
   use mesh_gmsh, only: mesh_read_gmsh
   use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant
   use mesh_local, only: mesh_t, mesh_build_local
+  use contact_surface, only: set_names_of
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain
   use hydro_initial, only: initial_apply
@@ -155,11 +156,24 @@ contains
     character(len=16) :: where
     do k = 1, size(config%contacts)
       write(where, '(a,i0,a)') '&contact(', k, ')'
-      if (global%find_set(config%contacts(k)%surface_a) == 0) call status%add(trim(where)// &
-          ': surface_a: '''//trim(config%contacts(k)%surface_a)//''' is not a face set of the mesh')
-      if (global%find_set(config%contacts(k)%surface_b) == 0) call status%add(trim(where)// &
-          ': surface_b: '''//trim(config%contacts(k)%surface_b)//''' is not a face set of the mesh')
+      call check_list('surface_a', config%contacts(k)%surface_a)
+      call check_list('surface_b', config%contacts(k)%surface_b)
     end do
+
+  contains
+
+    subroutine check_list(key, list)
+      character(len=*), intent(in) :: key, list
+      character(len=NAME_LEN), allocatable :: names(:)
+      integer :: i
+      names = set_names_of(list)
+      if (size(names) == 0) call status%add(trim(where)//': '//key//': no face set named')
+      do i = 1, size(names)
+        if (global%find_set(names(i)) == 0) call status%add(trim(where)//': '//key//': '''// &
+            trim(names(i))//''' is not a face set of the mesh')
+      end do
+    end subroutine check_list
+
   end subroutine check_contacts
 
   !> Allocate the state and apply the initial conditions (positions from the

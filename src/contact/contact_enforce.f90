@@ -62,7 +62,7 @@ module contact_enforce
       triangle_unit_normal, triangle_overlap, triangle_overlap_2d, triangle_vector_area, SEGMENT_FACET_COUNT, &
       FACET_CORNER, tangent_basis
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
-      surface_update_edges, surface_node_index
+      surface_update_edges, surface_node_index, set_names_of
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
       search_interval, find_key, sort_real
   use contact_rbf, only: rbf_weights
@@ -91,11 +91,14 @@ module contact_enforce
   !> mirror test). They carry less than this share of a node's force.
   real(rk), parameter :: AREA_TOLERANCE = 1.0e-8_rk
 
+  !> Length of a contact surface's list of face-set names.
+  integer, parameter, public :: SURFACE_LEN = 256
+
   !> One &contact group as read from the deck.
   type, public :: contact_spec_t
     character(len=NAME_LEN) :: name = ''
-    character(len=NAME_LEN) :: surface_a = '' !< face set
-    character(len=NAME_LEN) :: surface_b = '' !< face set (= surface_a: self-contact)
+    character(len=SURFACE_LEN) :: surface_a = '' !< face sets (names, blank or comma separated)
+    character(len=SURFACE_LEN) :: surface_b = '' !< face sets (= surface_a: self-contact)
     character(len=8) :: method = '' !< 'dam' or 'dlm'
     character(len=1) :: master = 'b' !< DAM master side
     character(len=12) :: form = 'velocity' !< DLM: coordinate, velocity, combined
@@ -173,7 +176,7 @@ contains
     real(rk), allocatable :: xc(:, :), packed(:, :)
     integer :: k, n, i, count_all
     character(len=16) :: where
-    character(len=NAME_LEN) :: master_set, slave_set
+    character(len=SURFACE_LEN) :: master_set, slave_set
 
     ct%npair = size(specs)
     allocate(ct%pairs(ct%npair), raw_a(ct%npair), raw_b(ct%npair))
@@ -204,8 +207,8 @@ contains
           slave_set = specs(k)%surface_b
           master_set = specs(k)%surface_a
         end if
-        call surface_build(global, [slave_set], raw_a(k), status)
-        call surface_build(global, [master_set], raw_b(k), status)
+        call surface_build(global, set_names_of(slave_set), raw_a(k), status)
+        call surface_build(global, set_names_of(master_set), raw_b(k), status)
       end associate
     end do
     if (.not. status%ok()) return
@@ -374,9 +377,32 @@ contains
     call surface_update_edges(p%b, ct%x)
     if (p%self) call surface_update_edges(p%a, ct%x)
     call segment_pair_search(ct%x, p%a, p%b, p%self, p%margin, p%segment_pairs)
-    if (p%method == METHOD_DAM) call bucket_search(ct%x, p%a, p%b, p%self, p%margin, &
-        p%test_pairs)
+    if (p%method == METHOD_DAM) then
+      call bucket_search(ct%x, p%a, p%b, p%self, p%margin, p%test_pairs)
+      if (p%self) call keep_lower_side(p%a, p%test_pairs)
+    end if
   end subroutine search_if_due
+
+  !> DAM self-contact: a node is the slave of a segment only from the side
+  !> with the lower segment ids (its lowest segment id below the segment's),
+  !> so each pair of facing sides is matched once, as two surfaces would be
+  !> (both sides as slaves would exchange everything twice).
+  subroutine keep_lower_side(surf, pairs)
+    type(contact_surface_t), intent(in) :: surf
+    integer, allocatable, intent(inout) :: pairs(:, :) !< (2, n) node, segment
+    integer(i8) :: lowest
+    integer :: m, kept, k
+    kept = 0
+    do m = 1, size(pairs, 2)
+      k = surface_node_index(surf, int(pairs(1, m), ik))
+      lowest = minval(surf%segment_id(surf%node_segments(surf%node_start(k): &
+          surf%node_start(k + 1) - 1)))
+      if (.not. lowest < surf%segment_id(pairs(2, m))) cycle
+      kept = kept + 1
+      pairs(:, kept) = pairs(:, m)
+    end do
+    pairs = pairs(:, :kept)
+  end subroutine keep_lower_side
 
   !> Capture tolerance: the deck's, or twice the closing distance of one step.
   pure real(rk) function capture_of(p, speed, dt) result(capture)

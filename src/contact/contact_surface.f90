@@ -20,11 +20,11 @@ module contact_surface
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
   use mesh_geometry, only: HEX_FACE_NODES
-  use mesh_global, only: global_mesh_t
+  use mesh_global, only: global_mesh_t, NAME_LEN
   use contact_geometry, only: quad_unit_normal
   implicit none
   private
-  public :: surface_build, surface_from_segments, surface_update_edges
+  public :: surface_build, surface_from_segments, surface_update_edges, set_names_of
   public :: surface_node_index, edge_end
 
   !> An edge is convex when sin(angle between the segment normals) exceeds this.
@@ -67,6 +67,30 @@ contains
     integer, intent(in) :: k !< corner / edge index 1..4
     edge_end = mod(k, 4) + 1
   end function edge_end
+
+  !> The face-set names of a deck's surface list: names separated by blanks
+  !> or commas ('left_xmax, right_xmin').
+  pure function set_names_of(list) result(names)
+    character(len=*), intent(in) :: list
+    character(len=NAME_LEN), allocatable :: names(:)
+    integer :: i, start, n
+    logical :: in_word
+    allocate(names(0))
+    in_word = .false.
+    start = 1
+    n = len_trim(list)
+    do i = 1, n + 1
+      if (i <= n) then
+        if (list(i:i) /= ' ' .and. list(i:i) /= ',') then
+          if (.not. in_word) start = i
+          in_word = .true.
+          cycle
+        end if
+      end if
+      if (in_word) names = [character(len=NAME_LEN) :: names, list(start:i - 1)]
+      in_word = .false.
+    end do
+  end function set_names_of
 
   !> Build a surface from named face sets of the mesh (in the order given);
   !> convexity uses the mesh coordinates. Unknown names are reported in status.

@@ -16,7 +16,7 @@ module io_deck
       BC_WALL
   use hydro_initial, only: region_t, UNSET
   use parallel_env, only: par_rank, par_bcast
-  use contact_enforce, only: contact_spec_t
+  use contact_enforce, only: contact_spec_t, SURFACE_LEN
   implicit none
   private
   public :: deck_read, deck_known_keys
@@ -916,7 +916,8 @@ contains
     integer, intent(in) :: index
     type(contact_spec_t), intent(inout) :: pair
     type(status_t), intent(inout) :: status
-    character(len=NAME_LEN) :: name, surface_a, surface_b, master
+    character(len=NAME_LEN) :: name, master
+    character(len=SURFACE_LEN) :: surface_a, surface_b
     character(len=16) :: method, form
     real(rk) :: capture, penetration_warning, search_margin
     integer :: search_every, ios
