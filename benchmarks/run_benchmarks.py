@@ -847,13 +847,15 @@ def render(data, out_path, img_dir):
         add("")
 
     # The contact search benchmark is a separate Fortran program
-    # (benchmarks/bench_search.f90); its hand-run section is kept in its own
-    # file so that re-rendering this document does not drop it.
-    extra = os.path.join(os.path.dirname(os.path.abspath(__file__)), "search_section.md")
-    if os.path.exists(extra):
-        with open(extra, encoding="utf-8") as handle:
-            add(handle.read().rstrip())
-            add("")
+    # (benchmarks/bench_search.f90) and the contact cost comes from the
+    # problem runs (tools/verify_contact.py); their hand-run sections are kept
+    # in their own files so that re-rendering this document does not drop them.
+    for name in ("search_section.md", "contact_section.md"):
+        extra = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
+        if os.path.exists(extra):
+            with open(extra, encoding="utf-8") as handle:
+                add(handle.read().rstrip())
+                add("")
 
     with open(out_path, "w", encoding="utf-8") as handle:
         handle.write("\n".join(lines).rstrip() + "\n")

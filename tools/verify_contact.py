@@ -69,6 +69,7 @@ SEDOV_QUICK = (18, 30)
 SEDOV_FULL = (18, 30, 45)
 TAYLOR_CASES = (1, 2)
 TUBE_VARIANTS = ("same", "stiff")
+TUBE_TITLES = {"same": "same material", "stiff": "struck tube (a) 10x stiffer"}
 
 SOD_DECKS = {"conforming": "tests/regression/decks/sod_conforming.nml",
              "dlm": "tests/regression/decks/sod_contact_dlm.nml",
@@ -165,6 +166,7 @@ def contact_stats(hist, pair):
 
 def run_stats(hist, pair):
     stats = {"e0": initial_energy(hist), "rows": int(hist["cycle"].size),
+             "cycles": int(hist["cycle"][-1]),
              "energy_error_max": float(np.abs(hist["energy_error"]).max())}
     if pair:
         stats.update(contact_stats(hist, pair))
@@ -173,7 +175,12 @@ def run_stats(hist, pair):
 
 def run(name, deck, opts, label, pair=None, method=None):
     """Run one deck (verify.run_case) and collect its history and timing."""
-    rec = verify.run_case(name, deck, opts)
+    return measure(name, verify.run_case(name, deck, opts), label, pair, method)
+
+
+def measure(name, rec, label, pair=None, method=None):
+    """The entry of one finished run: its run_case record (rc, workdir, dump,
+    wall), history.txt, statistics and the timing from run.log."""
     entry = {"name": name, "label": label, "pair": pair, "method": method, "rec": rec,
              "ok": rec["rc"] == 0 and bool(rec.get("dump"))}
     if entry["ok"]:
@@ -240,7 +247,8 @@ def save(figure, path):
     print(f"  wrote {os.path.relpath(path, ROOT)}", flush=True)
 
 
-STYLE = {None: ("k", "o"), "dlm": ("tab:blue", "s"), "dam": ("tab:orange", "^")}
+STYLE = {None: ("tab:green", "o"), "dlm": ("tab:blue", "s"), "dam": ("tab:orange", "^")}
+MEAN_LINES = {None: "-", "dlm": "--", "dam": ":"}
 
 
 def exact_setup(problem, path):
@@ -281,36 +289,47 @@ def plot_sod(entries, path):
     return True
 
 
+SEDOV_FIELDS = (("rho", "density", "density", "linear"),
+                ("p", "pressure", "pressure", "linear"),
+                ("e", "specific_internal_energy", "specific internal energy", "log"))
+SEDOV_BIN = 0.02
+
+
 def plot_sedov_profiles(entries, n, path):
-    """rho, p, e against the centroid radius for single, DLM and DAM at n^3."""
+    """rho, p, e against the centroid radius for single, DLM and DAM at n^3:
+    every zone as a dot, the volume-weighted mean in radial bins as a line."""
     done = [e for e in entries if e["ok"]]
     if not done:
         return False
     setup, _ = exact_setup("sedov", done[0]["rec"]["dump"])
     r_line = np.linspace(1e-3, 1.3, 3000)
     exact = dict(zip(("rho", "u", "p", "e"), setup.exact(r_line)))
-    fields = (("rho", "density", "density"), ("p", "pressure", "pressure"),
-              ("e", "specific_internal_energy", "specific internal energy"))
-    figure, axes = plt.subplots(1, 3, figsize=(15, 4.6))
-    for axis, (key, name, label) in zip(axes, fields):
+    figure, axes = plt.subplots(1, 3, figsize=(15, 4.8))
+    for axis, (key, name, label, scale) in zip(axes, SEDOV_FIELDS):
         highest = 0.0
         for e in done:
             data = dump.load(e["rec"]["dump"])
             r = np.linalg.norm(dump.zone_centroids(data), axis=1)
             value = data[name]
-            color, marker = STYLE[e["method"]]
-            axis.plot(r, value, ".", ms=1.2, alpha=0.5, color=color, rasterized=True,
+            color, _ = STYLE[e["method"]]
+            axis.plot(r, value, ".", ms=1.0, alpha=0.3, color=color, rasterized=True)
+            centres, mean = compare.radial_profile(r, value, data["volume"], SEDOV_BIN)
+            axis.plot(centres, mean, MEAN_LINES[e["method"]], lw=1.6, color=color,
                       label=e["label"])
             highest = max(highest, float(value[r < 1.3].max()))
-        axis.plot(r_line, exact[key], "-", color="k", lw=1.2, label="exact")
+        axis.plot(r_line, exact[key], "-", color="k", lw=1.0, label="exact")
         axis.set_xlim(0.0, 1.3)
-        axis.set_ylim(0.0, 1.15 * max(highest, float(np.nanmax(exact[key][r_line > 0.3]))))
+        if scale == "log":
+            axis.set_yscale("log")
+            axis.set_ylim(1e-2, 2.0 * highest)
+        else:
+            axis.set_ylim(0.0, 1.1 * max(highest, float(np.nanmax(exact[key]))))
         axis.set_xlabel("radius (zone centroid)")
         axis.set_ylabel(label)
         axis.grid(alpha=0.3)
-    axes[0].legend(fontsize=8, markerscale=6)
-    figure.suptitle(f"Sedov octant split at x = 0.6, left block {n}^3, t = {setup.time:.3g} "
-                    "(e: exact diverges at the centre)")
+    axes[0].legend(fontsize=8)
+    figure.suptitle(f"Sedov octant split at x = 0.6, left block {n}^3, t = {setup.time:.3g}: "
+                    f"zones (dots) and means in radial bins of {SEDOV_BIN} (lines)")
     save(figure, path)
     return True
 
@@ -333,7 +352,7 @@ def plot_sedov_energy(entries, path):
         drift = energy_drift(e["hist"])
         axis.semilogy(e["hist"]["time"], np.maximum(np.abs(drift), 1e-18),
                       lines[e["method"]], color=colors.get(e["n"], "k"), lw=1.0,
-                      label=f"{e['label']} {e['n']}^3 (end {drift[-1]:+.1e})")
+                      label=f"{e['label']} (end {drift[-1]:+.1e})")
     axis.set_xlabel("time")
     axis.set_ylabel("|(IE + KE - W_boundary) / E0 - 1|")
     axis.set_ylim(1e-18, 1e-1)
@@ -346,62 +365,90 @@ def plot_sedov_energy(entries, path):
 
 
 def plot_verney(entries, path):
+    """Inner radius against time: the whole collapse and a zoom on the stop."""
     done = [e for e in entries if e["ok"]]
     if not done:
         return False
     a_stop, t_stop, a, t = exact_verney.verney()
-    figure, axis = plt.subplots(figsize=(7, 4.6))
     t_max = max(float(e["verney"]["times"].max()) for e in done)
-    t_line = np.linspace(0.0, t_max, 400)
-    axis.plot(t_line, exact_verney.radius_at(t_line, a, t, a_stop, t_stop), "-", color="0.3",
-              label=f"rigid-plastic energy balance (stops at {a_stop:.3f} cm)")
-    for e in done:
-        color, marker = STYLE[e["method"]]
-        axis.plot(e["verney"]["times"], e["verney"]["radii"], marker=marker, ms=4, lw=0.8,
-                  color=color, mfc="none",
-                  label=f"{e['label']} (stops at {e['verney']['r_stop']:.3f} cm)")
-    axis.set_xlabel("time (us)")
-    axis.set_ylabel("inner radius (cm): mean of the nodes at r = 8 at t = 0")
-    axis.grid(alpha=0.3)
-    axis.legend(fontsize=8)
-    axis.set_title("Verney shell split at r = 9 cm by contact")
+    t_line = np.linspace(0.0, t_max, 600)
+    r_line = exact_verney.radius_at(t_line, a, t, a_stop, t_stop)
+    figure, axes = plt.subplots(1, 2, figsize=(12, 4.6))
+    for axis in axes:
+        axis.plot(t_line, r_line, "-", color="0.3",
+                  label=f"rigid-plastic energy balance (stops at {a_stop:.3f} cm)")
+        for e in done:
+            color, marker = STYLE[e["method"]]
+            axis.plot(e["verney"]["times"], e["verney"]["radii"], marker=marker, ms=4,
+                      lw=0.8, color=color, mfc="none",
+                      label=f"{e['label']} (smallest {e['verney']['r_stop']:.3f} cm)")
+        axis.set_xlabel("time (us)")
+        axis.set_ylabel("inner radius (cm)")
+        axis.grid(alpha=0.3)
+    axes[1].set_xlim(70.0, t_max + 2.0)
+    axes[1].set_ylim(a_stop - 0.2, a_stop + 0.5)
+    axes[0].legend(fontsize=8)
+    axes[0].set_title("mean radius of the nodes at r = 8 cm at t = 0", fontsize=9)
+    axes[1].set_title("the stop (t > 70 us)", fontsize=9)
+    figure.suptitle("Verney shell split at r = 9 cm by contact")
     save(figure, path)
     return True
 
 
-def rod_section(path, initial_path):
-    """x, z of the rod's (block of zone 0) nodes on the y = 0 plane."""
+def rod_profile(path, initial_path):
+    """Final (x, z) of the rod's outer surface in the y = 0 plane: of the rod's
+    (block of zone 0) nodes on y = 0 at t = 0, the outermost of each initial z
+    layer, in order of the initial z; and its initial (x, z)."""
     d0, d1 = dump.load(initial_path), dump.load(path)
-    rod = np.zeros(d0["coordinates"].shape[0], dtype=bool)
+    x0 = d0["coordinates"]
+    rod = np.zeros(x0.shape[0], dtype=bool)
     rod[np.unique(d0["connectivity"][d0["block"] == d0["block"][0]].ravel())] = True
-    section = rod & (np.abs(d0["coordinates"][:, 1]) < 1e-12)
-    return d1["coordinates"][section][:, [0, 2]], d0["coordinates"][section][:, [0, 2]]
+    section = np.nonzero(rod & (np.abs(x0[:, 1]) < 1e-12))[0]
+    layers = {}
+    for node in section:
+        key = round(float(x0[node, 2]), 9)
+        if key not in layers or x0[node, 0] > x0[layers[key], 0]:
+            layers[key] = node
+    outer = np.array([layers[k] for k in sorted(layers)])
+    return d1["coordinates"][outer][:, [0, 2]], x0[outer][:, [0, 2]]
+
+
+TAYLOR_STYLE = {"rigid": ("k", 3.0), "stiff": ("tab:green", 1.2), "steel": ("tab:red", 1.2)}
+TAYLOR_LINES = {None: "-", "dlm": "-", "dam": "--"}
+TAYLOR_FOOT = 1.0               # cm, height of the zoom on the foot
 
 
 def plot_taylor(cases, path):
-    """Final y = 0 sections of the rods, one panel per case."""
-    figure, axes = plt.subplots(1, len(cases), figsize=(5.5 * len(cases), 6.5))
-    axes = np.atleast_1d(axes)
-    colors = {"rigid": "k", "stiff": "tab:green", "steel": "tab:red"}
-    markers = {None: "o", "dlm": "s", "dam": "^"}
-    for axis, (case, entries) in zip(axes, sorted(cases.items())):
-        outline = None
+    """Final outer profiles of the rods in the y = 0 plane, one row per case:
+    the whole rod (left, true aspect) and the foot (right)."""
+    figure, axes = plt.subplots(len(cases), 2, figsize=(11, 6.0 * len(cases)), squeeze=False,
+                                gridspec_kw={"width_ratios": [1.0, 2.4]})
+    for (whole, foot), (case, entries) in zip(axes, sorted(cases.items())):
+        initial = None
         for e in entries:
             if not e["ok"]:
                 continue
-            final, initial = rod_section(e["rec"]["dump"], verify.first_dump(e["rec"]["workdir"]))
-            outline = initial if outline is None else outline
-            axis.plot(final[:, 0], final[:, 1], markers[e["method"]], ms=2.5, mfc="none",
-                      mew=0.6, color=colors[e["anvil"]], label=e["label"])
-        if outline is not None:
-            axis.plot([outline[:, 0].max()] * 2, [outline[:, 1].min(), outline[:, 1].max()],
-                      "k--", lw=0.8, label="initial radius")
-        axis.set_aspect("equal")
-        axis.set_xlabel("x (cm), section y = 0")
-        axis.set_ylabel("z (cm)")
-        axis.grid(alpha=0.3)
-        axis.legend(fontsize=7)
-        axis.set_title(f"Taylor case {case}, coarse, final shape", fontsize=10)
+            final, initial = rod_profile(e["rec"]["dump"],
+                                         verify.first_dump(e["rec"]["workdir"]))
+            color, width = TAYLOR_STYLE[e["anvil"]]
+            for axis in (whole, foot):
+                axis.plot(final[:, 0], final[:, 1], TAYLOR_LINES[e["method"]], lw=width,
+                          color=color, label=e["label"].split(", ", 1)[-1])
+        for axis in (whole, foot):
+            if initial is not None:
+                axis.plot(initial[:, 0], initial[:, 1], ":", color="0.5", lw=1.0,
+                          label="initial")
+            axis.set_xlabel("x (cm), section y = 0")
+            axis.set_ylabel("z (cm)")
+            axis.grid(alpha=0.3)
+        if initial is not None:
+            foot.legend(fontsize=8)
+        whole.set_xlim(0.0, 2.0)
+        whole.set_aspect("equal")
+        foot.set_ylim(-0.05, TAYLOR_FOOT)
+        whole.set_title(f"Taylor case {case}, coarse", fontsize=10)
+        foot.set_title(f"case {case}: final outer profile of the foot (z < {TAYLOR_FOOT:g} cm)",
+                       fontsize=10)
     save(figure, path)
     return True
 
@@ -417,17 +464,19 @@ def plot_tubes(variants, path):
                 continue
             h, e0 = e["hist"], e["stats"]["e0"]
             style = lines[e["method"]]
+            method = e["method"].upper()
             axis.plot(h["time"], h["kinetic_energy"] / e0, style, color="tab:blue",
-                      label=f"kinetic, {e['label']}")
+                      label=f"kinetic, {method}")
             axis.plot(h["time"], h["internal_energy"] / e0, style, color="tab:red",
-                      label=f"internal, {e['label']}")
+                      label=f"internal, {method}")
             axis.plot(h["time"], -h["contact_work"] / e0, style, color="tab:gray",
-                      label=f"- contact work, {e['label']}")
+                      label=f"- contact work (dissipated), {method}")
         axis.set_xlabel("time (us)")
         axis.set_ylabel("energy / E0")
         axis.grid(alpha=0.3)
-        axis.legend(fontsize=7)
-        axis.set_title(f"Crossed tubes, {variant} stiffness", fontsize=10)
+        if axis.get_legend_handles_labels()[0]:
+            axis.legend(fontsize=7)
+        axis.set_title(f"Crossed tubes, {TUBE_TITLES[variant]}", fontsize=10)
     save(figure, path)
     return True
 
@@ -483,10 +532,10 @@ def do_sod(opts, img):
 
 
 def sedov_entries(opts, n):
-    entries = [run(f"sedov_single_{n}", sedov_single_deck(n), opts, "single")]
+    entries = [run(f"sedov_single_{n}", sedov_single_deck(n), opts, f"single {n}^3")]
     for method in METHODS:
         deck = deck_text(SEDOV_CONTACT.format(method=method, n=n))
-        entries.append(run(f"sedov_{method}_{n}", deck, opts, method.upper(),
+        entries.append(run(f"sedov_{method}_{n}", deck, opts, f"{method.upper()} {n}^3",
                            PAIRS["sedov"], method))
     for e in entries:
         e["n"] = n
@@ -500,7 +549,7 @@ def sedov_rows(entries, n):
             rows.append(row(e))
             continue
         s = compare_summary("sedov", e["rec"]["dump"])
-        text = (f"{n}^3: L1(rho) = {s['L1_rho']:.3e}, shock r error "
+        text = (f"L1(rho) = {s['L1_rho']:.3e}, shock r error "
                 f"{100 * s['shock_r_error_rel']:+.2f} %")
         if e["method"] is None:
             reference = s["L1_rho"]
@@ -592,13 +641,13 @@ def do_al_on_steel(opts, img):
 
 def taylor_entries(opts, case):
     entries = [run(f"taylor{case}_rigid", deck_text(TAYLOR_RIGID.format(case=case)), opts,
-                   "rigid wall")]
+                   f"case {case}, rigid wall")]
     entries[0]["anvil"] = "rigid"
     for anvil in ("stiff", "steel"):
         for method in METHODS:
             deck = deck_text(TAYLOR_CONTACT.format(case=case, anvil=anvil, method=method))
             e = run(f"taylor{case}_{anvil}_{method}", deck, opts,
-                    f"{anvil} anvil, {method.upper()}", PAIRS["taylor"], method)
+                    f"case {case}, {anvil} anvil, {method.upper()}", PAIRS["taylor"], method)
             e["anvil"] = anvil
             entries.append(e)
     return entries
@@ -617,7 +666,7 @@ def within(shape, reference, tol):
             and abs(relative(shape[1], reference[1])) <= tol)
 
 
-def taylor_rows(entries, case):
+def taylor_rows(entries):
     shapes = {(e["anvil"], e["method"]): regress.rod_shape(e["rec"]["dump"])
               for e in entries if e["ok"]}
     rigid, steel_dlm = shapes.get(("rigid", None)), shapes.get(("steel", "dlm"))
@@ -627,15 +676,14 @@ def taylor_rows(entries, case):
         if key not in shapes:
             rows.append(row(e))
         elif e["anvil"] == "rigid":
-            rows.append(row(e, f"case {case}: " + shape_text(shapes[key], None, "")))
+            rows.append(row(e, shape_text(shapes[key], None, "")))
         elif e["anvil"] == "stiff":
-            rows.append(row(e, f"case {case}: " + shape_text(shapes[key], rigid, "rigid"),
+            rows.append(row(e, shape_text(shapes[key], rigid, "rigid"),
                             within(shapes[key], rigid, TAYLOR_TOL)))
         elif e["method"] == "dlm":
-            rows.append(row(e, f"case {case}: " + shape_text(shapes[key], rigid, "rigid")))
+            rows.append(row(e, shape_text(shapes[key], rigid, "rigid")))
         else:
-            rows.append(row(e, f"case {case}: " + shape_text(shapes[key], steel_dlm,
-                                                             "steel DLM"),
+            rows.append(row(e, shape_text(shapes[key], steel_dlm, "steel DLM"),
                             within(shapes[key], steel_dlm, TAYLOR_TOL)))
     return rows
 
@@ -644,7 +692,7 @@ def do_taylor(opts, img):
     rows, cases, images = [], {}, []
     for case in TAYLOR_CASES:
         cases[case] = taylor_entries(opts, case)
-        rows.extend(taylor_rows(cases[case], case))
+        rows.extend(taylor_rows(cases[case]))
     if plot_taylor(cases, os.path.join(img, "contact_taylor_sections.png")):
         images.append(("Taylor final sections", "img/contact_taylor_sections.png"))
     decks = [TAYLOR_RIGID.format(case=1),
@@ -667,7 +715,7 @@ def tube_row(e):
     ok = s["pen_max"] <= TUBE_PEN_MAX
     if e["method"] == "dlm":
         ok = ok and s["momentum_error"] <= MOMENTUM_ROUNDOFF
-    return row(e, f"{e['variant']}: tube b v_z = {v:+.3e} cm/us ({v / TUBE_V0:+.2f} of the "
+    return row(e, f"tube b v_z = {v:+.3e} cm/us ({v / TUBE_V0:+.2f} of the "
                   f"initial {TUBE_V0:g}); penetration {s['pen_max']:.2e} vs "
                   f"{TUBE_PEN_MAX:g} cm", ok)
 
@@ -678,8 +726,8 @@ def do_tubes(opts, img):
         variants[variant] = []
         for method in METHODS:
             deck = deck_text(TUBE_DECK.format(variant=variant, method=method))
-            e = run(f"tubes_{variant}_{method}", deck, opts, method.upper(), PAIRS["tubes"],
-                    method)
+            e = run(f"tubes_{variant}_{method}", deck, opts, f"{variant}, {method.upper()}",
+                    PAIRS["tubes"], method)
             e["variant"] = variant
             variants[variant].append(e)
             rows.append(tube_row(e))
@@ -736,7 +784,7 @@ def table_line(r):
             f"{fmt(s['pen_max']) if contact else '-'} | "
             f"{fmt(s['work_rel']) if contact else '-'} | {fmt(s['energy_error_max'], '.1e')} | "
             f"{fmt(s['momentum_error'], '.1e') if contact else '-'} | "
-            f"{e['timing'].get('cycles', rec.get('cycles', '?'))} | {wall} | {share_text(e)} |")
+            f"{s['cycles']} | {wall} | {share_text(e)} |")
 
 
 def section_lines(sec):

@@ -73,22 +73,24 @@ contains
   pure function set_names_of(list) result(names)
     character(len=*), intent(in) :: list
     character(len=NAME_LEN), allocatable :: names(:)
-    integer :: i, start, n
-    logical :: in_word
-    allocate(names(0))
-    in_word = .false.
-    start = 1
+    integer :: pass, i, start, n, count
+    logical :: separator
     n = len_trim(list)
-    do i = 1, n + 1
-      if (i <= n) then
-        if (list(i:i) /= ' ' .and. list(i:i) /= ',') then
-          if (.not. in_word) start = i
-          in_word = .true.
-          cycle
+    do pass = 1, 2
+      count = 0
+      start = 0
+      do i = 1, n + 1
+        separator = i > n
+        if (.not. separator) separator = list(i:i) == ' ' .or. list(i:i) == ','
+        if (.not. separator) then
+          if (start == 0) start = i
+        else if (start > 0) then
+          count = count + 1
+          if (pass == 2) names(count) = list(start:i - 1)
+          start = 0
         end if
-      end if
-      if (in_word) names = [character(len=NAME_LEN) :: names, list(start:i - 1)]
-      in_word = .false.
+      end do
+      if (pass == 1) allocate(names(count))
     end do
   end function set_names_of
 
