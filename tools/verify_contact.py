@@ -190,16 +190,7 @@ def measure(name, rec, label, pair=None, method=None):
     return entry
 
 
-def sedov_single_deck(n):
-    """problems/sedov/sedov.nml at n^3 (as tools/verify.py generates it)."""
-    return verify.sedov_deck(n)
-
-
 # --------------------------------------------------------------------------- measures
-
-def compare_summary(problem, path):
-    return verify.summarize(problem, path)
-
 
 def stopping_radius(workdir):
     """(time, radius) of the smallest mean radius of the initial r = 8 nodes, and
@@ -509,7 +500,7 @@ def do_sod(opts, img):
         if not e["ok"]:
             rows.append(row(e))
             continue
-        l1 = compare_summary("sod", e["rec"]["dump"])["L1_rho"]
+        l1 = verify.summarize("sod", e["rec"]["dump"])["L1_rho"]
         if e["method"] is None:
             reference = l1
             rows.append(row(e, f"L1(rho) = {l1:.3e}"))
@@ -532,7 +523,7 @@ def do_sod(opts, img):
 
 
 def sedov_entries(opts, n):
-    entries = [run(f"sedov_single_{n}", sedov_single_deck(n), opts, f"single {n}^3")]
+    entries = [run(f"sedov_single_{n}", verify.sedov_deck(n), opts, f"single {n}^3")]
     for method in METHODS:
         deck = deck_text(SEDOV_CONTACT.format(method=method, n=n))
         entries.append(run(f"sedov_{method}_{n}", deck, opts, f"{method.upper()} {n}^3",
@@ -548,7 +539,7 @@ def sedov_rows(entries, n):
         if not e["ok"]:
             rows.append(row(e))
             continue
-        s = compare_summary("sedov", e["rec"]["dump"])
+        s = verify.summarize("sedov", e["rec"]["dump"])
         text = (f"L1(rho) = {s['L1_rho']:.3e}, shock r error "
                 f"{100 * s['shock_r_error_rel']:+.2f} %")
         if e["method"] is None:
@@ -829,8 +820,8 @@ def header_lines(opts, sections, wall_total, command):
              f"`{os.path.relpath(os.path.abspath(opts.exe), ROOT)}`, {opts.np} MPI ranks on "
              f"{os.cpu_count()} cores, {'full' if opts.full else 'quick (default)'} mode: "
              f"**{wall_total:.0f} s** wall in all ({in_runs:.0f} s of it in impact3d)"
-             + (f"; {reused} runs reused from an earlier invocation (`--reuse`), their "
-                "times are from when they ran" if reused else "") + ".\n",
+             + (f"; {reused} run{'s' if reused != 1 else ''} reused from an earlier invocation "
+                "(`--reuse`), times from when they ran" if reused else "") + ".\n",
              "Columns of the tables (one row per run; DLM and DAM next to each other):\n",
              "- *criterion value(s)*: the problem's measure against its bound; *pass*: "
              "PASS / FAIL against the bound (reported, not enforced), `ref.` for a "
@@ -847,6 +838,10 @@ def header_lines(opts, sections, wall_total, command):
              "- *contact search / enforcement*: seconds (rank 0) over the run's seconds "
              "(`impact3d: done` line), in %; in brackets the share of the loop the run "
              "prints.\n"]
+    builds = {e["rec"].get("exe_mtime") for e in entries}
+    if len(builds) > 1:
+        lines.append(f"**Note**: the runs used {len(builds)} different builds of the "
+                     "executable (it was rebuilt while this ran); rerun for one build.\n")
     failed = failed_checks(sections)
     lines.append("**Criteria not met or runs failed**: " + ("; ".join(failed) if failed
                                                             else "none") + ".\n")

@@ -106,6 +106,7 @@ module contact_enforce
     real(rk) :: penetration_warning = huge(1.0_rk) !< warn above this penetration
     real(rk) :: search_margin = 0.0_rk !< territory margin (0 = automatic)
     integer :: search_every = 0 !< cycles between global searches (0 = automatic)
+    integer :: sweeps = 1 !< DLM: Gauss-Seidel sweeps of the pair forces (1 = one pass)
   end type contact_spec_t
 
   !> Geometry of one surface at x^n, computed once per cycle (in the
@@ -591,71 +592,95 @@ contains
     type(interface_t), intent(inout) :: p
     real(rk), intent(in) :: dt !< the stage's step
     logical, intent(in) :: final !< the corrector: update the diagnostics
+    real(rk), allocatable :: lambda(:), fc(:, :)
+    logical, allocatable :: gated(:), active_node(:)
     real(rk) :: nrm(3), s0, pen, wh, wd
     real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, pen_free, w, target, sum_force, pen_max
     real(rk) :: pen_sq, momentum(3), area_sum
-    integer :: q, i, nodeh, noded, active, released
-    logical, allocatable :: active_node(:)
+    integer :: q, i, nodeh, noded, active, released, sweep
 
     if (.not. final .or. .not. allocated(p%fp_node)) call dlm_geometry(ct, p)
-    allocate(active_node(ct%ncn))
+    allocate(lambda(p%nfp), gated(p%nfp), fc(3, ct%ncn), active_node(ct%ncn))
+    lambda = 0.0_rk
+    fc = 0.0_rk
+    ! Sweep 1 is the one-pass DLM: every pair from the free (hydro) state.
+    ! Later sweeps (Gauss-Seidel, in the fixed pair order) add to each pair
+    ! force the correction its residual approach asks for, given the contact
+    ! forces of all pairs so far; sum(lambda) stays <= 0 per pair and each
+    ! correction is applied equal and opposite, so momentum stays exact.
+    do sweep = 1, max(p%spec%sweeps, 1)
+      do q = 1, p%nfp
+        nodeh = p%fp_node(1, q)
+        noded = p%fp_node(2, q)
+        wh = p%fp_real(1, q)
+        wd = p%fp_real(2, q)
+        pen = p%fp_real(3, q)
+        nrm = p%fp_real(5:7, q)
+        mh = ct%mass(nodeh) * wh
+        md = ct%mass(noded) * wd
+        mu = mh * md / (mh + md)
+        vh = dot_product(ct%v(:, nodeh), nrm)
+        vd = dot_product(ct%v(:, noded), nrm)
+        w = vh - vd
+        if (sweep == 1) then
+          fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
+          fd_ = dot_product(ct%f(:, noded), nrm) * wd
+          pen_free = pen + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
+          gated(q) = pen_free > 0.0_rk .or. p%form == FORM_COORDINATE
+          select case (p%form)
+          case (FORM_COORDINATE)
+            fh = mu * (fd_ / md - fh_ / mh - w / (0.5_rk * dt) - pen / (0.5_rk * dt * dt))
+          case (FORM_VELOCITY)
+            fh = 0.0_rk
+            if (gated(q)) fh = mu * (fd_ / md - fh_ / mh - w / dt)
+          case default
+            fh = 0.0_rk
+            if (gated(q)) then
+              target = -max(pen + 0.5_rk * dt * w, 0.0_rk) / dt
+              fh = mu * (fd_ / md - fh_ / mh + (target - w) / dt)
+            end if
+          end select
+          fh = min(fh, 0.0_rk)
+        else
+          if (.not. gated(q) .or. p%form /= FORM_VELOCITY) cycle
+          ! Residual approach at t^n+1 with every contact force so far.
+          fh_ = dot_product(ct%f(:, nodeh) + fc(:, nodeh), nrm) * wh
+          fd_ = dot_product(ct%f(:, noded) + fc(:, noded), nrm) * wd
+          fh = min(lambda(q) + mu * (fd_ / md - fh_ / mh - w / dt), 0.0_rk)
+        end if
+        if (fh == lambda(q)) cycle
+        fc(:, nodeh) = fc(:, nodeh) + (fh - lambda(q)) * nrm
+        fc(:, noded) = fc(:, noded) - (fh - lambda(q)) * nrm
+        lambda(q) = fh
+      end do
+    end do
+    ct%fc = ct%fc + fc
+
     active_node = .false.
     active = 0
     sum_force = 0.0_rk
     pen_max = 0.0_rk
     pen_sq = 0.0_rk
     area_sum = 0.0_rk
-    momentum = 0.0_rk
     do q = 1, p%nfp
-      nodeh = p%fp_node(1, q)
-      noded = p%fp_node(2, q)
-      wh = p%fp_real(1, q)
-      wd = p%fp_real(2, q)
+      if (.not. lambda(q) < 0.0_rk) cycle
       pen = p%fp_real(3, q)
       s0 = p%fp_real(4, q)
-      nrm = p%fp_real(5:7, q)
-      mh = ct%mass(nodeh) * wh
-      md = ct%mass(noded) * wd
-      fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
-      fd_ = dot_product(ct%f(:, noded), nrm) * wd
-      vh = dot_product(ct%v(:, nodeh), nrm)
-      vd = dot_product(ct%v(:, noded), nrm)
-      mu = mh * md / (mh + md)
-      w = vh - vd
-      pen_free = pen + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
-      select case (p%form)
-      case (FORM_COORDINATE)
-        fh = mu * (fd_ / md - fh_ / mh - w / (0.5_rk * dt) - pen / (0.5_rk * dt * dt))
-      case (FORM_VELOCITY)
-        fh = 0.0_rk
-        if (pen_free > 0.0_rk) fh = mu * (fd_ / md - fh_ / mh - w / dt)
-      case default
-        fh = 0.0_rk
-        if (pen_free > 0.0_rk) then
-          target = -max(pen + 0.5_rk * dt * w, 0.0_rk) / dt
-          fh = mu * (fd_ / md - fh_ / mh + (target - w) / dt)
-        end if
-      end select
-      fh = min(fh, 0.0_rk)
-      if (fh < 0.0_rk) then
-        ct%fc(:, nodeh) = ct%fc(:, nodeh) + fh * nrm
-        ct%fc(:, noded) = ct%fc(:, noded) - fh * nrm
-        active = active + 1
-        sum_force = sum_force - fh
-        active_node(nodeh) = .true.
-        active_node(noded) = .true.
-        if (pen > 0.0_rk) then
-          pen_max = max(pen_max, pen)
-          pen_sq = pen_sq + s0 * pen * pen
-        end if
-        area_sum = area_sum + s0
+      active = active + 1
+      sum_force = sum_force - lambda(q)
+      active_node(p%fp_node(:, q)) = .true.
+      if (pen > 0.0_rk) then
+        pen_max = max(pen_max, pen)
+        pen_sq = pen_sq + s0 * pen * pen
       end if
+      area_sum = area_sum + s0
     end do
     if (.not. final) return
     released = count(p%was_active .and. .not. active_node)
     p%was_active = active_node
+    momentum = 0.0_rk
     do i = 1, ct%ncn
-      momentum = momentum + ct%fc(:, i)
+      momentum = momentum + fc(:, i)
     end do
     p%diag = [real(active, rk), sum_force, pen_max, &
         sqrt(pen_sq / max(area_sum, tiny(1.0_rk))), real(released, rk), dt * momentum]

@@ -123,7 +123,8 @@ contains
           'dump_cycles', 'status_every', 'history_every']
     case ('contact')
       keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
-          'capture', 'penetration_warning', 'search_margin', 'search_every', 'form']
+          'capture', 'penetration_warning', 'search_margin', 'search_every', 'form', &
+          'sweeps']
     case default
       allocate(keys(0))
     end select
@@ -920,11 +921,11 @@ contains
     character(len=SURFACE_LEN) :: surface_a, surface_b
     character(len=16) :: method, form
     real(rk) :: capture, penetration_warning, search_margin
-    integer :: search_every, ios
+    integer :: search_every, sweeps, ios
     character(len=256) :: msg
     character(len=16) :: where
     namelist /contact/ name, surface_a, surface_b, method, master, capture, &
-        penetration_warning, search_margin, search_every, form
+        penetration_warning, search_margin, search_every, form, sweeps
 
     write(where, '(a,i0,a)') '&contact(', index, ')'
     name = ''
@@ -936,6 +937,7 @@ contains
     penetration_warning = pair%penetration_warning
     search_margin = pair%search_margin
     search_every = pair%search_every
+    sweeps = pair%sweeps
     form = ''
     read(sect, nml=contact, iostat=ios, iomsg=msg)
     if (ios /= 0) then
@@ -988,6 +990,8 @@ contains
     pair%penetration_warning = penetration_warning
     pair%search_margin = search_margin
     pair%search_every = search_every
+    if (sweeps < 1) call status%add(trim(where)//': sweeps: must be >= 1')
+    pair%sweeps = sweeps
   end subroutine read_contact
 
   subroutine read_output(sect, out, status)
