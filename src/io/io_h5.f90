@@ -38,27 +38,14 @@ module io_h5
     set_error, object_context, attribute_context, file_name_of, class_name, str, h5_path_exists
   use io_h5_attribute, only: h5_write_attr_real, h5_write_attr_int, h5_write_attr_string, &
     h5_read_attr_real, h5_read_attr_int, h5_read_attr_string
-  use hdf5, only: hid_t, hsize_t, size_t, &
-    h5open_f, h5close_f, &
-    h5fcreate_f, h5fopen_f, h5fclose_f, h5fis_hdf5_f, h5fget_name_f, &
-    H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, &
-    h5pcreate_f, h5pclose_f, h5pset_fapl_mpio_f, h5pset_dxpl_mpio_f, &
-    h5pset_create_inter_group_f, &
-    H5P_FILE_ACCESS_F, H5P_DATASET_XFER_F, H5P_LINK_CREATE_F, H5FD_MPIO_COLLECTIVE_F, &
-    h5gcreate_f, h5gopen_f, h5gclose_f, &
-    h5lexists_f, h5oopen_f, h5oclose_f, &
-    h5screate_f, h5screate_simple_f, h5sclose_f, h5sselect_hyperslab_f, h5sselect_none_f, &
-    h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, &
-    h5sget_simple_extent_npoints_f, H5S_SCALAR_F, H5S_SELECT_SET_F, &
-    h5dcreate_f, h5dopen_f, h5dclose_f, h5dget_space_f, h5dget_type_f, &
-    h5dwrite_f, h5dread_f, &
-    h5acreate_f, h5aopen_f, h5aclose_f, h5aexists_f, h5adelete_f, h5awrite_f, h5aread_f, &
-    h5aget_space_f, h5aget_type_f, &
-    h5tcopy_f, h5tclose_f, h5tset_size_f, h5tget_size_f, h5tset_strpad_f, &
-    h5tget_class_f, h5tis_variable_str_f, &
-    H5T_C_S1, H5T_STR_NULLPAD_F, H5T_FLOAT_F, H5T_INTEGER_F, H5T_STRING_F, &
-    H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_STD_I64LE, &
-    h5kind_to_type, H5_REAL_KIND, H5_INTEGER_KIND
+  use hdf5, only: hid_t, hsize_t, h5open_f, h5close_f, h5fcreate_f, h5fopen_f, h5fclose_f, &
+    h5fis_hdf5_f, H5F_ACC_TRUNC_F, H5F_ACC_RDONLY_F, h5pcreate_f, h5pset_fapl_mpio_f, &
+    h5pset_dxpl_mpio_f, H5P_FILE_ACCESS_F, H5P_DATASET_XFER_F, H5FD_MPIO_COLLECTIVE_F, &
+    h5gcreate_f, h5gopen_f, h5screate_simple_f, h5sselect_hyperslab_f, h5sselect_none_f, &
+    h5sget_simple_extent_ndims_f, h5sget_simple_extent_dims_f, H5S_SELECT_SET_F, h5dcreate_f, &
+    h5dopen_f, h5dget_space_f, h5dget_type_f, h5dwrite_f, h5dread_f, h5tget_class_f, &
+    H5T_FLOAT_F, H5T_INTEGER_F, H5T_IEEE_F64LE, H5T_STD_I32LE, H5T_STD_I64LE, h5kind_to_type, &
+    H5_REAL_KIND, H5_INTEGER_KIND
   implicit none
   private
 
