@@ -7,6 +7,7 @@ module app_run
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time
+  use core_signal, only: signal_caught, signal_name
   use mesh_global, only: global_mesh_t
   use mesh_local, only: mesh_t
   use mesh_geometry, only: hex_centroid
@@ -29,8 +30,9 @@ module app_run
 
   integer, parameter, public :: EXIT_OK = 0, EXIT_INPUT = 1, EXIT_FAILURE = 2, EXIT_INCOMPLETE = 3
   integer, parameter :: FAIL_NONE = 0, FAIL_VOLUME = 1, FAIL_NAN = 2, FAIL_DT = 3
-  integer, parameter :: NRECORD = 12
-  integer, parameter :: STOP_NONE = 0, STOP_FILE = 1, STOP_WALL = 2
+  integer, parameter :: NRECORD = 13
+  ! Clean-stop requests; the largest over the ranks wins.
+  integer, parameter :: STOP_NONE = 0, STOP_FILE = 1, STOP_WALL = 2, STOP_SIGNAL = 3
 
   !> What the end-of-cycle reduction found.
   type :: control_t
@@ -41,7 +43,8 @@ module app_run
     integer :: fail = FAIL_NONE
     real(rk) :: fail_zone = 0.0_rk !< global id (zone or node)
     real(rk) :: fail_position(3) = 0.0_rk
-    integer :: stop = STOP_NONE !< a clean stop requested (STOP file or wall-time limit)
+    integer :: stop = STOP_NONE !< a clean stop requested (STOP file, wall-time limit, signal)
+    integer :: stop_signal = 0 !< with STOP_SIGNAL: the signal (largest number over the ranks)
   end type control_t
 
 contains
@@ -64,7 +67,11 @@ contains
     character(len=400) :: msg
     logical :: exists
     integer :: bad, ierr
+    real(rk) :: wall_begin, wall_read
 
+    ! The wall-time limit counts from here: set-up and the restart read included.
+    wall_begin = wall_time()
+    wall_read = 0.0_rk
     code = EXIT_OK
     call h5_library_open(ierr, msg)
     if (ierr /= 0) then
@@ -94,7 +101,9 @@ contains
     end if
     call global%free()
     if (len_trim(restart) > 0) then
+      wall_read = wall_time()
       call dump_read(restart, mesh, state, status)
+      wall_read = wall_time() - wall_read
       if (.not. status%ok()) then
         call report(status)
         code = EXIT_INPUT
@@ -113,7 +122,8 @@ contains
     else
       call history_open(config, state, .true.)
     end if
-    call time_loop(config, mesh, state, mz, bc, ct, ctl, len_trim(restart) > 0, code)
+    call time_loop(config, mesh, state, mz, bc, ct, ctl, len_trim(restart) > 0, wall_begin, &
+        wall_read, code)
     call h5_library_close(ierr, msg)
   end subroutine run_deck
 
@@ -154,14 +164,16 @@ contains
 
   !> Local checks, local stable step, one collective: every rank learns the
   !> global step (ties to the lowest zone id) and the first failure.
-  subroutine end_of_cycle_control(mesh, state, config, bad, bad_kind, ctl, stop_request)
+  subroutine end_of_cycle_control(mesh, state, config, bad, bad_kind, ctl, stop_request, &
+      stop_signal)
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
     type(config_t), intent(in) :: config
     integer, intent(in) :: bad !< local zone with bad volume (0 = none) from the last update
     integer, intent(in) :: bad_kind !< FAIL_VOLUME from an earlier stage, else FAIL_NONE
     type(control_t), intent(out) :: ctl
-    integer, intent(in), optional :: stop_request !< rank 0's STOP_* decision
+    integer, intent(in), optional :: stop_request !< this rank's STOP_* request
+    integer, intent(in), optional :: stop_signal !< with STOP_SIGNAL: the signal this rank caught
     real(rk) :: record(NRECORD), dt
     real(rk), allocatable :: all(:, :)
     integer :: zone, reason, z, n, r, fail
@@ -198,8 +210,9 @@ contains
       end if
     end if
     record = [dt, 0.0_rk, real(reason, rk), real(fail, rk), gid, where, 0.0_rk, 0.0_rk, 0.0_rk, &
-        0.0_rk]
+        0.0_rk, 0.0_rk]
     if (present(stop_request)) record(12) = real(stop_request, rk)
+    if (present(stop_signal)) record(13) = real(stop_signal, rk)
     if (zone > 0) then
       record(2) = real(mesh%zone_gid(zone), rk)
       record(9:11) = hex_centroid(state%node_position(:, mesh%zone_node(:, zone)))
@@ -214,6 +227,7 @@ contains
         ctl%dt_position = all(9:11, r)
       end if
       ctl%stop = max(ctl%stop, nint(all(12, r)))
+      ctl%stop_signal = max(ctl%stop_signal, nint(all(13, r)))
       if (nint(all(4, r)) /= FAIL_NONE .and. ctl%fail == FAIL_NONE) then
         ctl%fail = nint(all(4, r))
         ctl%fail_zone = all(5, r)
@@ -223,7 +237,8 @@ contains
   end subroutine end_of_cycle_control
 
   !> The predictor-corrector loop.
-  subroutine time_loop(config, mesh, state, mz, bc, ct, ctl, restarted, code)
+  subroutine time_loop(config, mesh, state, mz, bc, ct, ctl, restarted, wall_begin, wall_read, &
+      code)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
@@ -232,13 +247,15 @@ contains
     type(contact_t), intent(inout) :: ct
     type(control_t), intent(inout) :: ctl
     logical, intent(in) :: restarted
+    real(rk), intent(in) :: wall_begin !< start of the run, for the wall-time limit
+    real(rk), intent(in) :: wall_read !< seconds the restart read took (0 for a new run)
     integer, intent(out) :: code
     real(rk) :: dt, dt_stable, next_dump, work, wall_start, wall_status, work_sum, contact_work
     real(rk) :: wall_output, wall_mark
     integer(i8) :: cycle_status
     integer :: bad, bad_half
     logical :: last, dump_now, ok, exists
-    integer :: request
+    integer :: request, signum
     real(rk) :: wall_cycle_start, cycle_wall, wall_dump
     character(len=16) :: reason
 
@@ -246,12 +263,15 @@ contains
     wall_start = wall_time()
     wall_status = wall_start
     wall_output = 0.0_rk
-    wall_dump = 0.0_rk
+    ! Until the loop has written a dump, the time of a dump is estimated by the
+    ! initial dump or, after a restart, by the read of the restart dump.
+    wall_dump = wall_read
     cycle_status = state%cycle
     if (.not. restarted) then
       wall_mark = wall_time()
       call write_dump(config, mesh, state, 'initial', wall_start, ok)
       wall_output = wall_time() - wall_mark
+      wall_dump = wall_output
       if (.not. ok) then
         code = EXIT_FAILURE
         return
@@ -317,13 +337,15 @@ contains
 
       if (state%cycle == config%fault_cycle .and. config%fault_kind == 'nan') &
           call inject_nan(mesh, state)
-      ! Batch use: rank 0 decides on a clean stop (STOP file, wall-time limit);
-      ! the decision travels with the cycle's control reduction.
+      ! Batch use: rank 0 decides on a clean stop for the STOP file and the
+      ! wall-time limit (budget: three cycles, two dumps and a second), any rank
+      ! for a signal it caught; the requests travel with the cycle's control
+      ! reduction, so a signal delivered to one rank stops them all.
       request = STOP_NONE
       if (par_rank() == 0) then
         cycle_wall = wall_time() - wall_cycle_start
         if (config%wall_limit > 0.0_rk) then
-          if (wall_time() - wall_start + 3.0_rk * cycle_wall + 2.0_rk * wall_dump + 1.0_rk > &
+          if (wall_time() - wall_begin + 3.0_rk * cycle_wall + 2.0_rk * wall_dump + 1.0_rk > &
               config%wall_limit) request = STOP_WALL
         end if
         if (mod(state%cycle, int(config%stop_check_every, i8)) == 0) then
@@ -332,27 +354,39 @@ contains
           if (exists) request = STOP_FILE
         end if
       end if
+      signum = signal_caught()
+      if (signum /= 0) request = STOP_SIGNAL
       if (bad_half > 0) then
-        call end_of_cycle_control(mesh, state, config, bad_half, FAIL_VOLUME, ctl, request)
+        call end_of_cycle_control(mesh, state, config, bad_half, FAIL_VOLUME, ctl, request, &
+            signum)
       else
-        call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl, request)
+        call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl, request, signum)
       end if
       if (ctl%fail /= FAIL_NONE) cycle
       if (ctl%stop /= STOP_NONE .and. .not. last) then
         call history_write(config, mesh, state, ct)
         if (par_rank() == 0) then
-          if (ctl%stop == STOP_FILE) then
+          select case (ctl%stop)
+          case (STOP_FILE)
             write(output_unit, '(a)') 'impact3d: stop file '''//trim(config%output%directory)// &
                 '/'//trim(config%stop_file)//''' found: writing a restart dump and stopping '// &
                 '(remove the file before restarting)'
-          else
-            write(output_unit, '(a)') 'impact3d: close to the wall-time limit: writing a '// &
-                'restart dump and stopping'
-          end if
+          case (STOP_WALL)
+            write(output_unit, '(a)') 'impact3d: close to the wall-time limit ('// &
+                seconds(wall_time() - wall_begin)//' s of wall_limit = '// &
+                seconds(config%wall_limit)//' s used): writing a restart dump and stopping'
+          case default
+            write(output_unit, '(a)') 'impact3d: signal '//trim(signal_name(ctl%stop_signal))// &
+                ' received: writing a restart dump and stopping'
+          end select
+          flush(output_unit)
         end if
         call write_dump(config, mesh, state, 'stop', wall_start, ok)
         code = EXIT_INCOMPLETE
         if (.not. ok) code = EXIT_FAILURE
+        if (par_rank() == 0 .and. ok) write(output_unit, '(a,i0,a)') &
+            'impact3d: stopped at cycle ', state%cycle, ' with a restart dump, '// &
+            seconds(wall_time() - wall_begin)//' s after the start; exit code 3'
         return
       end if
 
@@ -404,6 +438,15 @@ contains
         state%cycle, ' cycles, ', wall_time() - wall_start, ' s (', wall_output, &
         ' s of it in dumps)'
   end subroutine time_loop
+
+  !> Seconds as text with two decimals, no leading blanks ('0.13', '3600.00').
+  function seconds(value) result(text)
+    real(rk), intent(in) :: value
+    character(len=:), allocatable :: text
+    character(len=24) :: buffer
+    write(buffer, '(f24.2)') value
+    text = trim(adjustl(buffer))
+  end function seconds
 
   !> Contact bookkeeping at the end of a cycle: contact work, and a warning
   !> (once per pair) when the penetration exceeds the deck's tolerance.

@@ -5,12 +5,17 @@ program impact3d
   use app_run, only: run_deck, EXIT_OK, EXIT_INPUT
   use parallel_env, only: par_init, par_finalize, par_rank
   use io_deck, only: deck_known_keys
+  use core_signal, only: signal_install
   implicit none
   character(len=512) :: arg, deck, restart
   integer :: i, nargs, code
-  logical :: check_only
+  logical :: check_only, ok
 
   call par_init()
+  ! After MPI_Init, so that these handlers are the ones in force.
+  call signal_install(ok)
+  if (.not. ok) write(error_unit, '(a,i0,a)') 'rank ', par_rank(), ': impact3d: warning: '// &
+      'could not install the SIGTERM/SIGUSR1/SIGUSR2 handlers: signals will kill the run'
   deck = ''
   restart = ''
   check_only = .false.

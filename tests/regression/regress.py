@@ -33,6 +33,12 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
                                       two-block Riemann problem: the material interface
                                       and the shock within 2 local zone widths of exact
   twowave, shell_stop, stopfile, bars, mirror, patch: see their docstrings
+  signal   --deck D --np A --restart-np B --signal USR1|USR2|TERM --to mpirun|rank
+           [--replace OLD NEW ...]    a signal once the run has printed a cycle line:
+                                      exit 3, restart dump, restart ends bitwise identical
+  walllimit --deck D --np A --restart-np B [--replace OLD NEW ...]
+                                      &control wall_limit set to stop well before the end:
+                                      the same checks, and the run stops before the limit
   relative --deck D --reference R --problem P --key K --tol T [--max KEY=V] [--pair NAME]
                                       contact run's K within (1 + T) of the reference's
   impact   --deck D --pair NAME --tol T --max-pen P [--momentum-tol M]
@@ -787,6 +793,167 @@ def cmd_stopfile(args):
         check("restarted run ends at the same cycle", False, mine)
 
 
+def variant_deck(args):
+    """The deck with each --replace OLD NEW applied (each OLD must occur), written
+    to the work directory; returns its path."""
+    text = open(args.deck).read()
+    for old, new in args.replace or []:
+        if old not in text:
+            raise SystemExit("regress.py: --replace: %r not in %s" % (old, args.deck))
+        text = text.replace(old, new)
+    os.makedirs(args.workdir, exist_ok=True)
+    path = os.path.join(args.workdir, "variant.nml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def dump_cycle(path):
+    m = re.search(r"_(\d{6})\.h5$", path or "")
+    return int(m.group(1)) if m else -1
+
+
+def rank_pids(parent, np):
+    """pids of the impact3d processes started by mpirun `parent`, by MPI rank
+    (OMPI_COMM_WORLD_RANK in their environment): {rank: pid}."""
+    found = {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open("/proc/%s/stat" % entry) as f:
+                ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+            if ppid != parent:
+                continue
+            with open("/proc/%s/environ" % entry, "rb") as f:
+                env = dict(v.split(b"=", 1) for v in f.read().split(b"\0") if b"=" in v)
+        except (OSError, ValueError, IndexError):
+            continue
+        if b"OMPI_COMM_WORLD_RANK" in env:
+            found[int(env[b"OMPI_COMM_WORLD_RANK"])] = int(entry)
+    return found
+
+
+def stopped_restart_check(args, deck, full, ws, code, out, err, why):
+    """Common end of the signal and walllimit commands: exit code 3, the message,
+    a restart dump before the final cycle; restarted on --restart-np ranks the
+    run ends bitwise identical to the uninterrupted one."""
+    check("stopped run exits with code 3", code == 3, "got %d: %s" % (code, err[-2000:]))
+    check("it says why", why in out, out[-1000:])
+    stop_dump = final_dump(ws)
+    print("  stopped at cycle %d of %d" % (dump_cycle(stop_dump), dump_cycle(full)))
+    check("restart dump written before the end", stop_dump is not None
+          and 0 < dump_cycle(stop_dump) < dump_cycle(full), str(stop_dump))
+    if code != 3 or stop_dump is None:
+        return
+    wr = os.path.join(args.workdir, "restarted")
+    code, out, err = run(args, args.restart_np, wr, deck,
+                         extra=["--restart", os.path.abspath(stop_dump)])
+    check("restarted run on %d rank(s) exits 0" % args.restart_np, code == 0, err[-2000:])
+    mine = os.path.join(wr, os.path.basename(full))
+    if os.path.exists(mine):
+        same, diff = h5same(full, mine)
+        check("final dump bitwise identical after the stop and restart", same, diff)
+    else:
+        check("restarted run ends at the same cycle", False, mine)
+
+
+def cmd_signal(args):
+    """A real signal: start the run, wait for its first status line (the deck
+    should print them, e.g. status_every = 10), send --signal to mpirun (which
+    forwards USR1 and USR2 to every rank) or, with --to rank, to the last rank's
+    process only (the stop must still reach every rank); then as stopfile."""
+    import signal
+    import time
+    deck = variant_deck(args)
+    wd = os.path.join(args.workdir, "full")
+    t0 = time.time()
+    code, out, err = run(args, args.np, wd, deck)
+    check("uninterrupted run exits 0 (%.1f s)" % (time.time() - t0), code == 0, err[-2000:])
+    full = final_dump(wd)
+    if code != 0 or full is None:
+        return
+    ws = os.path.join(args.workdir, "stopped")
+    if os.path.isdir(ws):
+        shutil.rmtree(ws)
+    os.makedirs(ws)
+    shutil.copy(deck, os.path.join(ws, "deck.nml"))
+    signum = getattr(signal, "SIG" + args.signal)
+    cmd = [args.mpiexec, "-np", str(args.np), args.exe, "deck.nml"]
+    with open(os.path.join(ws, "stderr.txt"), "w+") as errfile:
+        proc = subprocess.Popen(cmd, cwd=ws, env=ENV, stdout=subprocess.PIPE, stderr=errfile,
+                                text=True)
+        lines = []
+        sent = None
+        deadline = time.time() + args.timeout
+        for line in proc.stdout:
+            lines.append(line)
+            if sent is None and re.match(r"\s*cycle\s+\d+", line):
+                if args.to == "mpirun":
+                    target = proc.pid
+                else:
+                    pids = {}
+                    while len(pids) < args.np and time.time() < deadline:
+                        pids = rank_pids(proc.pid, args.np)
+                        time.sleep(0.01)
+                    target = pids.get(args.np - 1)
+                if target is not None:
+                    os.kill(target, signum)
+                    sent = line.split()[1]
+                    print("  SIG%s sent to %s (pid %d) after cycle %s"
+                          % (args.signal, args.to, target, sent))
+            if time.time() > deadline:
+                proc.kill()
+                break
+        code = proc.wait()
+        errfile.seek(0)
+        err = errfile.read()
+    out = "".join(lines)
+    check("signal sent once the run printed a cycle line", sent is not None, out[-1000:])
+    stopped_restart_check(args, deck, full, ws, code, out, err,
+                          "signal SIG%s received" % args.signal)
+
+
+def cmd_walllimit(args):
+    """&control wall_limit: timed uninterrupted run T, then the same deck with
+    wall_limit = 1 s + T/3 (the run budgets three cycles, two dumps and 1 s), so
+    that the stop comes well before the end whatever the machine; should that
+    run still finish (the machine got faster), again with 1 s + a third of the
+    rest, up to three times. The run must report its stop before the limit;
+    then as stopfile."""
+    import time
+    deck = variant_deck(args)
+    wd = os.path.join(args.workdir, "full")
+    t0 = time.time()
+    code, out, err = run(args, args.np, wd, deck)
+    elapsed = time.time() - t0
+    check("uninterrupted run exits 0 (%.1f s)" % elapsed, code == 0, err[-2000:])
+    full = final_dump(wd)
+    if code != 0 or full is None:
+        return
+    text = open(deck).read()
+    m = re.search(r"^&control\b", text, flags=re.M)
+    check("deck has a &control group", m is not None)
+    if m is None:
+        return
+    limit = 1.0 + elapsed / 3.0
+    ws = os.path.join(args.workdir, "stopped")
+    limited = os.path.join(args.workdir, "limited.nml")
+    for attempt in range(3):
+        with open(limited, "w") as f:
+            f.write(text[:m.end()] + " wall_limit = %.3f," % limit + text[m.end():])
+        code, out, err = run(args, args.np, ws, limited)
+        if code != 0:
+            break
+        print("  finished within wall_limit = %.2f s; again with a smaller limit" % limit)
+        limit = 1.0 + (limit - 1.0) / 3.0
+    found = re.search(r"with a restart dump, (\S+) s after the start", out)
+    used = float(found.group(1)) if found else float("inf")
+    check("stopped %.2f s after the start, before wall_limit = %.2f s" % (used, limit),
+          used < limit, out[-1000:])
+    stopped_restart_check(args, deck, full, ws, code, out, err, "close to the wall-time limit")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -794,7 +961,7 @@ def main():
                                         "convergence", "window", "interface", "stability",
                                         "wavefront", "rebound", "twowave", "shell_stop",
                                         "stopfile", "bars", "mirror", "patch", "relative",
-                                        "shape", "impact"])
+                                        "shape", "impact", "signal", "walllimit"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -835,6 +1002,13 @@ def main():
     p.add_argument("--momentum-tol", type=float, default=0.0)
     p.add_argument("--max-pen", type=float, default=float("inf"))
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
+    p.add_argument("--replace", nargs=2, action="append", metavar=("OLD", "NEW"),
+                   help="signal, walllimit: edit the deck text before running")
+    p.add_argument("--signal", default="USR1", choices=["USR1", "USR2", "TERM"])
+    p.add_argument("--to", default="mpirun", choices=["mpirun", "rank"],
+                   help="signal: send to mpirun, or to the last rank's process only")
+    p.add_argument("--timeout", type=float, default=900.0,
+                   help="signal: seconds before the signalled run is killed")
     args = p.parse_args()
     args.deck = os.path.abspath(args.deck)
     if args.reference:
