@@ -22,6 +22,7 @@ module app_run
   use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
   use app_setup, only: setup_mesh, setup_state
   use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
+      contact_report, &
       contact_diagnostics, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
   use parallel_env, only: par_rank, par_size, par_allgather, par_sum, par_sum_array, par_bcast
   implicit none
@@ -430,10 +431,7 @@ contains
       code = EXIT_FAILURE
       return
     end if
-    if (par_rank() == 0 .and. ct%npair > 0) write(output_unit, '(a,f10.3,a,f10.3,a,f6.1,a)') &
-        'impact3d: contact ', ct%search_seconds, ' s search, ', ct%enforce_seconds, &
-        ' s enforcement (', 100.0_rk * (ct%search_seconds + ct%enforce_seconds) / &
-        max(wall_time() - wall_start - wall_output, 1.0e-9_rk), '% of the loop, rank 0)'
+    if (ct%npair > 0) call contact_report(ct, wall_time() - wall_start - wall_output)
     if (par_rank() == 0) write(output_unit, '(a,i0,a,f10.3,a,f8.3,a)') 'impact3d: done, ', &
         state%cycle, ' cycles, ', wall_time() - wall_start, ' s (', wall_output, &
         ' s of it in dumps)'

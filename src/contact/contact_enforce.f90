@@ -18,17 +18,33 @@
 !> contact forces over the step (trapezoid velocity) is the contact work of
 !> the energy balance.
 !>
-!> Replicated contact (until the RCB decomposition): the positions x^n,
-!> velocities v^n and forces f of all contact nodes are gathered from their
-!> owners (one sum-reduction of exact zeros and one owner value, so bitwise
-!> the owner's value on every rank); every rank then runs the same search and
-!> enforcement in the same order and keeps the results of its owned nodes.
-!> Results are bitwise independent of the rank count.
+!> Parallel contact by RCB (DESIGN.md 5, CONTACT.md 5). The mesh partition
+!> does not follow the surfaces, so contact work is decomposed on its own:
+!> * At each global search (every few cycles, when the territory margin may be
+!>   used up) the positions of all contact nodes are summed onto every rank
+!>   (one reduction; the only replicated step), every rank runs the same
+!>   global search, and a recursive coordinate bisection of the contact nodes,
+!>   weighted by the pairs each node keys, assigns every pair to one part
+!>   (rank): a DLM segment pair to the part of its a-segment's first node, a
+!>   DAM test pair to the part of its slave node. A part's local set is the
+!>   segments of its pairs plus the rings of neighbours the geometry reads
+!>   (nodal areas, the DAM master neighbourhood), numbered by global id.
+!> * Each stage, mesh owners send x^n, v^n and f of the local sets' nodes to
+!>   the parts (point to point), parts run DLM or DAM on their pairs and send
+!>   back one record per contribution, keyed by (interface, global pair
+!>   order); owners sum the records in key order, which is the order of a
+!>   one-rank run, so results are bitwise independent of the rank count.
+!>   DAM needs a second round: the owners' matched master velocities go back
+!>   to the parts for the put-back-on of the slaves.
+!> * DLM with sweeps > 1 (Gauss-Seidel over all pairs) is sequential: every
+!>   pair of such an interface goes to part 0, which sends node sums.
+!> Nodes far from any pair belong to no local set and cost nothing.
 !>
 !> Contact index space. The nodes of all contact surfaces, sorted by global
-!> id, are numbered 1..ncn; the surfaces are rebuilt in this numbering, so all
-!> contact arrays are (3, ncn) and the order of every loop is fixed by global
-!> ids.
+!> id, are numbered 1..nall (the global surfaces all_a, all_b use it); the
+!> local set of a part is numbered 1..ncn in the same order, and its
+!> surfaces a, b and pair lists use local numbers, so the order of every loop
+!> follows global ids.
 !>
 !> Closing condition (both methods, CONTACT.md sections 3.7 and 4). A pair is
 !> enforced when the free motion (hydro forces only) would close its gap by
@@ -56,6 +72,7 @@
 module contact_enforce
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
+  use, intrinsic :: iso_fortran_env, only: output_unit
   use mesh_global, only: global_mesh_t, NAME_LEN
   use mesh_local, only: mesh_t
   use contact_geometry, only: segment_facets, corner_areas, quad_unit_normal, &
@@ -66,10 +83,13 @@ module contact_enforce
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
       search_interval, find_key, sort_real
   use contact_rbf, only: rbf_weights
-  use parallel_env, only: par_sum_array
+  use parallel_env, only: par_sum_array, par_max, par_rank, par_size
+  use parallel_exchange, only: par_exchange, par_exchange_counts
+  use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_diagnostics
+  public :: contact_report
 
   integer, parameter, public :: METHOD_DAM = 1, METHOD_DLM = 2
   integer, parameter, public :: FORM_COORDINATE = 1, FORM_VELOCITY = 2, FORM_COMBINED = 3
@@ -119,21 +139,24 @@ module contact_enforce
     real(rk), allocatable :: nodal_area(:) !< (ncn) dual-cell areas of the surface's nodes
   end type surface_geometry_t
 
-  !> One contact pair (interface) in contact-index space.
+  !> One contact pair (interface).
   type, public :: interface_t
     type(contact_spec_t), public :: spec
     integer :: method = METHOD_DLM
     integer :: form = FORM_VELOCITY
     logical :: self = .false.
-    type(contact_surface_t) :: a, b !< b = master for DAM
+    logical :: single_part = .false. !< every pair on part 0 (DLM sweeps > 1)
+    type(contact_surface_t) :: all_a, all_b !< whole surfaces, contact index (b = master for DAM)
+    type(contact_surface_t) :: a, b !< this part's local surfaces, local index
     real(rk) :: size = 0.0_rk !< median segment size of both surfaces
     real(rk) :: margin = 0.0_rk !< territory margin in use
-    integer(i8) :: next_search = 0 !< cycle of the next global search
-    integer, allocatable :: segment_pairs(:, :) !< DLM: (2, n) segment of a, of b
-    integer, allocatable :: test_pairs(:, :) !< DAM: (2, n) slave node, master segment
-    logical, allocatable :: was_active(:) !< (ncn) node carried contact force last step
+    integer, allocatable :: segment_pairs(:, :) !< DLM: (2, n) local segment of a, of b
+    integer(i8), allocatable :: pair_key(:) !< DLM: (n) global order of each local segment pair
+    integer, allocatable :: test_pairs(:, :) !< DAM: (2, n) local slave node, master segment
+    logical, allocatable :: was_active(:) !< (nown) owned node carried contact force last step
     integer :: nfp = 0 !< DLM facet pairs of the cycle
     integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
+    integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
     real(rk), allocatable :: fp_real(:, :) !< (7, nfp) shares wh, wd, pen, s0, normal
     type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
     type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
@@ -141,24 +164,64 @@ module contact_enforce
     integer, allocatable :: ex_start(:) !< DAM: (nprimary + 1) exchange entries of a pair
     integer, allocatable :: ex_master(:) !< DAM: master node of an exchange entry
     real(rk), allocatable :: ex_real(:, :) !< DAM: (3, nex) shares wm, ws and overlap s0
+    logical, allocatable :: enforced(:) !< DAM: (ncn) local slave enforced this stage
+    real(rk) :: partial(CONTACT_DIAG_COUNT) = 0.0_rk !< this part's diagnostic sums
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     logical, public :: warned = .false. !< the penetration warning was given
   end type interface_t
+
+  !> Contributions travelling from the parts to the mesh owners: ids
+  !> (contact index, interface, key) and nv values each.
+  type :: records_t
+    integer :: n = 0
+    integer :: nv = 3
+    integer(i8), allocatable :: id(:, :) !< (3, capacity)
+    real(rk), allocatable :: val(:, :) !< (nv, capacity)
+    ! Buffers of the exchange, kept from stage to stage.
+    integer(i8), allocatable :: isend(:), irecv(:)
+    real(rk), allocatable :: rsend(:), rrecv(:)
+    integer, allocatable :: node(:) !< (capacity) owned index of a received record
+    integer, allocatable :: start(:), place(:) !< (nown + 1) buckets of the owned nodes
+  end type records_t
+
+  !> One interface's pairs from the global search, and the segments of the
+  !> whole surfaces a part reads (during a rebuild).
+  type :: selection_t
+    integer, allocatable :: pairs(:, :) !< (2, n) DLM: segments a, b; DAM: node, segment
+    integer, allocatable :: owned_index(:) !< global order of this part's pairs
+    logical, allocatable :: mark_a(:), mark_b(:) !< (nseg) segment in the local set
+  end type selection_t
 
   !> All contact of a run.
   type, public :: contact_t
     integer :: npair = 0
     type(interface_t), allocatable :: pairs(:)
-    integer :: ncn = 0 !< contact nodes
-    integer(i8), allocatable :: gid(:) !< (ncn) their global ids, ascending
-    real(rk), allocatable :: mass(:) !< (ncn) nodal masses (fixed)
-    integer :: nown = 0 !< owned contact nodes of this rank
-    integer, allocatable :: own_contact(:) !< (nown) contact index
-    integer, allocatable :: own_local(:) !< (nown) local node index
-    real(rk), allocatable :: x(:, :), v(:, :), f(:, :) !< (3, ncn) replicated x^n, v^n, f
-    real(rk), allocatable :: fc(:, :) !< (3, ncn) contact force of the step
-    integer, allocatable :: pair_of_node(:) !< scratch
-    real(rk) :: search_seconds = 0.0_rk, enforce_seconds = 0.0_rk
+    ! Every contact node (static, on every rank).
+    integer :: nall = 0 !< contact nodes of all surfaces
+    integer(i8), allocatable :: all_gid(:) !< (nall) global ids, ascending
+    real(rk), allocatable :: all_mass(:) !< (nall) nodal masses (fixed)
+    integer, allocatable :: all_owner(:) !< (nall) rank owning the node in the mesh
+    ! Owned contact nodes of this rank.
+    integer :: nown = 0
+    integer, allocatable :: own_contact(:) !< (nown) contact index, ascending
+    integer, allocatable :: own_local(:) !< (nown) local mesh node index
+    real(rk), allocatable :: fc(:, :) !< (3, nown) contact force of the stage
+    ! This rank's RCB part.
+    integer :: ncn = 0 !< nodes of the local set
+    integer, allocatable :: all_of(:) !< (ncn) their contact index, ascending
+    real(rk), allocatable :: mass(:) !< (ncn)
+    real(rk), allocatable :: x(:, :), v(:, :), f(:, :) !< (3, ncn) x^n, v^n, f of the stage
+    ! Migration plan (rebuilt with the RCB).
+    integer, allocatable :: recv_count(:) !< (nranks) local nodes sent by each owner
+    integer, allocatable :: recv_local(:) !< (ncn) local node of each, by owner
+    integer, allocatable :: send_count(:) !< (nranks) owned nodes sent to each part
+    integer, allocatable :: send_own(:) !< owned index of each, by part
+    integer(i8) :: next_search = 0 !< cycle of the next global search and RCB
+    real(rk) :: speed = 0.0_rk !< largest contact node speed at t^n (all ranks)
+    integer :: rebuilds = 0 !< global searches (RCB rebuilds) so far
+    integer :: ncn_max = 0 !< largest local set of this rank so far
+    real(rk) :: search_seconds = 0.0_rk, enforce_seconds = 0.0_rk, migrate_seconds = 0.0_rk
+    type(records_t) :: kept(3) !< record buffers (DLM, DAM exchange, DAM put-back) between stages
   end type contact_t
 
 contains
@@ -174,7 +237,7 @@ contains
     type(status_t), intent(inout) :: status
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
     integer(i8), allocatable :: all(:)
-    real(rk), allocatable :: xc(:, :), packed(:, :)
+    real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
     integer :: k, n, i, count_all
     character(len=16) :: where
     character(len=SURFACE_LEN) :: master_set, slave_set
@@ -228,37 +291,49 @@ contains
       count_all = count_all + raw_b(k)%nnode
     end do
     call sort_unique(all)
-    ct%ncn = size(all)
-    call move_alloc(all, ct%gid)
-    allocate(xc(3, ct%ncn))
-    xc = global%coordinates(:, ct%gid)
+    ct%nall = size(all)
+    call move_alloc(all, ct%all_gid)
+    allocate(xc(3, ct%nall))
+    xc = global%coordinates(:, ct%all_gid)
     do k = 1, ct%npair
-      call renumber(raw_a(k), ct%pairs(k)%a)
-      call renumber(raw_b(k), ct%pairs(k)%b)
-      ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%a) + &
-          median_size(xc, ct%pairs(k)%b))
-      allocate(ct%pairs(k)%was_active(ct%ncn))
-      ct%pairs(k)%was_active = .false.
+      call renumber(raw_a(k), ct%pairs(k)%all_a)
+      call renumber(raw_b(k), ct%pairs(k)%all_b)
+      ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
+          median_size(xc, ct%pairs(k)%all_b))
+      ct%pairs(k)%single_part = ct%pairs(k)%method == METHOD_DLM .and. &
+          ct%pairs(k)%spec%sweeps > 1
     end do
 
-    ! Owned contact nodes of this rank.
+    ! Owned contact nodes of this rank; masses and owners of all.
     ct%nown = 0
     allocate(ct%own_contact(mesh%nnode_owned), ct%own_local(mesh%nnode_owned))
     do n = 1, mesh%nnode_owned
-      i = find_key(ct%gid, mesh%node_gid(n))
+      i = find_key(ct%all_gid, mesh%node_gid(n))
       if (i == 0) cycle
       ct%nown = ct%nown + 1
       ct%own_contact(ct%nown) = i
       ct%own_local(ct%nown) = n
     end do
-    allocate(packed(1, ct%ncn))
+    ct%own_contact = ct%own_contact(:ct%nown)
+    ct%own_local = ct%own_local(:ct%nown)
+    allocate(packed(2, ct%nall))
     packed = 0.0_rk
     do i = 1, ct%nown
       packed(1, ct%own_contact(i)) = node_mass(ct%own_local(i))
+      packed(2, ct%own_contact(i)) = real(par_rank(), rk)
     end do
-    call par_sum_array(packed(1, :))
-    ct%mass = packed(1, :)
-    allocate(ct%x(3, ct%ncn), ct%v(3, ct%ncn), ct%f(3, ct%ncn), ct%fc(3, ct%ncn))
+    allocate(flat(2 * ct%nall))
+    flat = reshape(packed, [2 * ct%nall])
+    call par_sum_array(flat)
+    packed = reshape(flat, [2, ct%nall])
+    ct%all_mass = packed(1, :)
+    ct%all_owner = nint(packed(2, :))
+    allocate(ct%fc(3, ct%nown))
+    ct%fc = 0.0_rk
+    do k = 1, ct%npair
+      allocate(ct%pairs(k)%was_active(ct%nown))
+      ct%pairs(k)%was_active = .false.
+    end do
 
   contains
 
@@ -270,7 +345,7 @@ contains
       allocate(segments(4, raw%nseg))
       do s = 1, raw%nseg
         do c = 1, 4
-          segments(c, s) = int(find_key(ct%gid, int(raw%segments(c, s), i8)), ik)
+          segments(c, s) = int(find_key(ct%all_gid, int(raw%segments(c, s), i8)), ik)
         end do
       end do
       call surface_from_segments(segments, raw%segment_id, xc, surf)
@@ -299,8 +374,9 @@ contains
     h = sizes((surf%nseg + 1) / 2)
   end function median_size
 
-  !> Contact forces of the step for the owned nodes: force(:, local) += fc.
-  !> x_old, v_old: positions and velocities at t^n; force: hydro corrector force.
+  !> Contact forces of the stage for the owned nodes: force(:, local) += fc.
+  !> x_old, v_old: positions and velocities at t^n; force: hydro force of the
+  !> stage. Collective.
   subroutine contact_apply(ct, x_old, v_old, force, dt, cycle, final, wall_clock)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x_old(:, :), v_old(:, :)
@@ -314,75 +390,661 @@ contains
         real(rk) :: t
       end function wall_clock
     end interface
-    real(rk), allocatable :: packed(:)
-    real(rk) :: t0, t1
-    integer :: i, k, c
+    type(records_t) :: dlm_out, dam_out, putback
+    real(rk), allocatable :: fck(:, :, :), vmatch(:, :, :), vm_local(:, :, :)
+    logical, allocatable :: has(:, :), touched(:, :)
+    real(rk) :: t0, speed
+    integer :: i, k
+    logical :: any_dam
 
     if (ct%npair == 0) return
-    ! Gather x^n, v^n and f of all contact nodes (replicated).
-    allocate(packed(9 * ct%ncn))
-    packed = 0.0_rk
+    t0 = wall_clock()
+    speed = 0.0_rk
     do i = 1, ct%nown
-      c = 9 * (ct%own_contact(i) - 1)
-      packed(c + 1:c + 3) = x_old(:, ct%own_local(i))
-      packed(c + 4:c + 6) = v_old(:, ct%own_local(i))
-      packed(c + 7:c + 9) = force(:, ct%own_local(i))
+      speed = max(speed, norm2(v_old(:, ct%own_local(i))))
     end do
-    call par_sum_array(packed)
-    do c = 1, ct%ncn
-      ct%x(:, c) = packed(9 * c - 8:9 * c - 6)
-      ct%v(:, c) = packed(9 * c - 5:9 * c - 3)
-      ct%f(:, c) = packed(9 * c - 2:9 * c)
-    end do
-    ct%fc = 0.0_rk
+    ct%speed = par_max(speed)
+    if (cycle >= ct%next_search .or. .not. allocated(ct%all_of)) &
+        call contact_rebuild(ct, x_old, dt, cycle)
+    call lap(ct%search_seconds)
+    call gather_nodes(ct, x_old, v_old, force)
+    call lap(ct%migrate_seconds)
 
+    ! The parts: DLM pair forces, DAM exchange over the overlaps.
+    call take(ct%kept(1), dlm_out, 3)
+    call take(ct%kept(2), dam_out, 10)
+    call take(ct%kept(3), putback, 3)
+    any_dam = .false.
     do k = 1, ct%npair
-      t0 = wall_clock()
-      call search_if_due(ct, ct%pairs(k), dt, cycle)
-      t1 = wall_clock()
-      ct%search_seconds = ct%search_seconds + (t1 - t0)
+      ct%pairs(k)%partial = 0.0_rk
       select case (ct%pairs(k)%method)
       case (METHOD_DLM)
-        call dlm_step(ct, ct%pairs(k), dt, final)
+        call dlm_step(ct, ct%pairs(k), k, dt, final, dlm_out)
       case (METHOD_DAM)
-        call dam_step(ct, ct%pairs(k), dt, final)
+        any_dam = .true.
+        call dam_exchange(ct, ct%pairs(k), k, dt, final, dam_out)
       end select
-      ct%enforce_seconds = ct%enforce_seconds + (wall_clock() - t1)
     end do
+    call lap(ct%enforce_seconds)
 
+    ! The owners: sums in key order.
+    allocate(fck(3, ct%nown, ct%npair), has(ct%nown, ct%npair))
+    fck = 0.0_rk
+    has = .false.
+    call send_records(ct, dlm_out)
+    call sum_records(dlm_out, fck, has)
+    if (any_dam) then
+      call send_records(ct, dam_out)
+      allocate(vmatch(3, ct%nown, ct%npair), touched(ct%nown, ct%npair))
+      call match_masters(ct, dam_out, v_old, force, dt, vmatch, touched)
+      call scatter_nodes(ct, vmatch, vm_local)
+      call lap(ct%migrate_seconds)
+      do k = 1, ct%npair
+        if (ct%pairs(k)%method == METHOD_DAM) call dam_put_back(ct, ct%pairs(k), k, dt, &
+            vm_local(:, :, k), putback)
+      end do
+      call lap(ct%enforce_seconds)
+      call send_records(ct, putback)
+      call dam_forces(ct, putback, v_old, force, dt, vmatch, touched, fck, has)
+    end if
+    ct%fc = 0.0_rk
     do i = 1, ct%nown
-      force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + ct%fc(:, ct%own_contact(i))
+      do k = 1, ct%npair
+        if (has(i, k)) ct%fc(:, i) = ct%fc(:, i) + fck(:, i, k)
+      end do
+      force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + ct%fc(:, i)
     end do
+    if (final) call reduce_diagnostics(ct, has, dt)
+    call take(dlm_out, ct%kept(1), 3)
+    call take(dam_out, ct%kept(2), 10)
+    call take(putback, ct%kept(3), 3)
+    call lap(ct%migrate_seconds)
+
+  contains
+
+    subroutine lap(total)
+      real(rk), intent(inout) :: total
+      real(rk) :: t
+      t = wall_clock()
+      total = total + (t - t0)
+      t0 = t
+    end subroutine lap
+
   end subroutine contact_apply
 
-  !> Global search when due: margin and interval from the relative speed.
-  subroutine search_if_due(ct, p, dt, cycle)
-    type(contact_t), intent(in) :: ct
-    type(interface_t), intent(inout) :: p
-    real(rk), intent(in) :: dt
+  !> Global search of every interface, RCB of the contact nodes, this part's
+  !> pairs and local set, and the migration plan. Collective.
+  subroutine contact_rebuild(ct, x_old, dt, cycle)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x_old(:, :), dt
     integer(i8), intent(in) :: cycle
-    real(rk) :: speed
-    integer :: every, i
-    if (cycle < p%next_search .and. allocated(p%segment_pairs)) return
-    p%margin = p%spec%search_margin
-    if (.not. p%margin > 0.0_rk) p%margin = 0.5_rk * p%size
-    speed = 0.0_rk
-    do i = 1, ct%ncn
-      speed = max(speed, norm2(ct%v(:, i)))
+    real(rk), allocatable :: flat(:), xall(:, :), xloc(:, :)
+    integer(i8), allocatable :: weight(:), request(:), wanted(:)
+    integer, allocatable :: l_of(:), seg_a(:), seg_b(:), fill(:)
+    logical, allocatable :: in_set(:), owned(:)
+    type(rcb_t) :: rcb
+    type(selection_t), allocatable :: sel(:)
+    integer :: k, i, c, m, n, every, every_min, me, nranks, r, s, e, j
+
+    nranks = par_size()
+    me = par_rank()
+    ct%rebuilds = ct%rebuilds + 1
+    ! Positions of all contact nodes on every rank (the one replicated step).
+    allocate(flat(3 * ct%nall))
+    flat = 0.0_rk
+    do i = 1, ct%nown
+      c = ct%own_contact(i)
+      flat(3 * c - 2:3 * c) = x_old(:, ct%own_local(i))
     end do
-    speed = 2.0_rk * speed
-    every = p%spec%search_every
-    if (every == 0) every = search_interval(p%margin, capture_of(p, speed, dt), speed, dt, &
-        1.2_rk, 50)
-    p%next_search = cycle + int(every, i8)
-    call surface_update_edges(p%b, ct%x)
-    if (p%self) call surface_update_edges(p%a, ct%x)
-    call segment_pair_search(ct%x, p%a, p%b, p%self, p%margin, p%segment_pairs)
-    if (p%method == METHOD_DAM) then
-      call bucket_search(ct%x, p%a, p%b, p%self, p%margin, p%test_pairs)
-      if (p%self) call keep_lower_side(p%a, p%test_pairs)
+    call par_sum_array(flat)
+    xall = reshape(flat, [3, ct%nall])
+    deallocate(flat)
+
+    ! Global search, the same on every rank.
+    allocate(sel(ct%npair))
+    every_min = huge(1)
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        p%margin = p%spec%search_margin
+        if (.not. p%margin > 0.0_rk) p%margin = 0.5_rk * p%size
+        every = p%spec%search_every
+        if (every == 0) every = search_interval(p%margin, capture_of(p, 2.0_rk * ct%speed, dt), &
+            2.0_rk * ct%speed, dt, 1.2_rk, 50)
+        every_min = min(every_min, every)
+        call surface_update_edges(p%all_b, xall)
+        if (p%self) call surface_update_edges(p%all_a, xall)
+        if (p%method == METHOD_DLM) then
+          call segment_pair_search(xall, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs)
+        else
+          call bucket_search(xall, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs)
+          if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs)
+        end if
+      end associate
+    end do
+    ct%next_search = cycle + int(every_min, i8)
+
+    ! RCB of the contact nodes, weighted by the pairs they key.
+    allocate(weight(ct%nall))
+    weight = 0
+    do k = 1, ct%npair
+      do m = 1, size(sel(k)%pairs, 2)
+        c = key_node(ct%pairs(k), sel(k)%pairs(:, m))
+        weight(c) = weight(c) + 1
+      end do
+    end do
+    call rcb_build(xall(:, ct%own_contact), weight(ct%own_contact), ct%all_gid(ct%own_contact), &
+        nranks, rcb)
+
+    ! This part's pairs and the segments their geometry reads.
+    allocate(in_set(ct%nall))
+    in_set = .false.
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        allocate(owned(size(sel(k)%pairs, 2)), sel(k)%mark_a(p%all_a%nseg), &
+            sel(k)%mark_b(p%all_b%nseg))
+        do m = 1, size(sel(k)%pairs, 2)
+          if (p%single_part) then
+            owned(m) = me == 0
+          else
+            c = key_node(p, sel(k)%pairs(:, m))
+            owned(m) = rcb_part_of(rcb, xall(:, c), ct%all_gid(c)) == me
+          end if
+        end do
+        sel(k)%mark_a = .false.
+        sel(k)%mark_b = .false.
+        if (p%method == METHOD_DLM) then
+          do m = 1, size(sel(k)%pairs, 2)
+            if (.not. owned(m)) cycle
+            sel(k)%mark_a(sel(k)%pairs(1, m)) = .true.
+            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
+          end do
+          ! Nodal areas need every segment of every node.
+          call add_ring(p%all_a, sel(k)%mark_a)
+          call add_ring(p%all_b, sel(k)%mark_b)
+        else
+          do m = 1, size(sel(k)%pairs, 2)
+            if (.not. owned(m)) cycle
+            n = surface_node_index(p%all_a, int(sel(k)%pairs(1, m), ik))
+            do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
+              sel(k)%mark_a(p%all_a%node_segments(e)) = .true.
+            end do
+            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
+          end do
+          ! The master neighbourhood, and the nodal areas of its nodes.
+          call add_ring(p%all_b, sel(k)%mark_b)
+          call add_ring(p%all_b, sel(k)%mark_b)
+        end if
+        sel(k)%owned_index = pack([(m, m = 1, size(owned))], owned)
+        sel(k)%pairs = sel(k)%pairs(:, sel(k)%owned_index)
+        deallocate(owned)
+        do s = 1, p%all_a%nseg
+          if (sel(k)%mark_a(s)) in_set(p%all_a%segments(:, s)) = .true.
+        end do
+        do s = 1, p%all_b%nseg
+          if (sel(k)%mark_b(s)) in_set(p%all_b%segments(:, s)) = .true.
+        end do
+      end associate
+    end do
+
+    ! The local set, by ascending global id.
+    ct%all_of = pack([(c, c = 1, ct%nall)], in_set)
+    ct%ncn = size(ct%all_of)
+    ct%ncn_max = max(ct%ncn_max, ct%ncn)
+    allocate(l_of(ct%nall))
+    l_of = 0
+    do i = 1, ct%ncn
+      l_of(ct%all_of(i)) = i
+    end do
+    xloc = xall(:, ct%all_of)
+    ct%mass = ct%all_mass(ct%all_of)
+    if (allocated(ct%x)) deallocate(ct%x, ct%v, ct%f)
+    allocate(ct%x(3, ct%ncn), ct%v(3, ct%ncn), ct%f(3, ct%ncn))
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
+        call local_surface(p%all_a, sel(k)%mark_a, l_of, xloc, p%a, seg_a)
+        call local_surface(p%all_b, sel(k)%mark_b, l_of, xloc, p%b, seg_b)
+        if (p%method == METHOD_DLM) then
+          p%segment_pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
+              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+          p%pair_key = int(sel(k)%owned_index, i8)
+        else
+          p%test_pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
+              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+        end if
+        call geometry_free(p%ga)
+        call geometry_free(p%gb)
+        if (allocated(p%primary)) deallocate(p%primary)
+        if (allocated(p%enforced)) deallocate(p%enforced)
+        allocate(p%enforced(ct%ncn))
+        p%enforced = .false.
+      end associate
+    end do
+
+    ! Migration plan: each owner learns which of its nodes each part needs.
+    allocate(fill(nranks))
+    if (allocated(ct%recv_count)) deallocate(ct%recv_count, ct%send_count)
+    allocate(ct%recv_count(nranks), ct%send_count(nranks))
+    ct%recv_count = 0
+    do i = 1, ct%ncn
+      r = ct%all_owner(ct%all_of(i))
+      ct%recv_count(r + 1) = ct%recv_count(r + 1) + 1
+    end do
+    fill(1) = 0
+    do r = 2, nranks
+      fill(r) = fill(r - 1) + ct%recv_count(r - 1)
+    end do
+    if (allocated(ct%recv_local)) deallocate(ct%recv_local)
+    allocate(ct%recv_local(ct%ncn), request(ct%ncn))
+    do i = 1, ct%ncn
+      r = ct%all_owner(ct%all_of(i)) + 1
+      fill(r) = fill(r) + 1
+      ct%recv_local(fill(r)) = i
+      request(fill(r)) = int(ct%all_of(i), i8)
+    end do
+    call par_exchange_counts(ct%recv_count, ct%send_count)
+    call par_exchange(request, ct%recv_count, wanted, ct%send_count)
+    if (allocated(ct%send_own)) deallocate(ct%send_own)
+    allocate(ct%send_own(size(wanted)))
+    do j = 1, size(wanted)
+      ct%send_own(j) = sorted_index(ct%own_contact, int(wanted(j)))
+    end do
+  end subroutine contact_rebuild
+
+  !> The contact node that decides the part of a pair: DLM, the first corner
+  !> of its a-segment; DAM, its slave node.
+  pure integer function key_node(p, pair) result(c)
+    type(interface_t), intent(in) :: p
+    integer, intent(in) :: pair(2)
+    if (p%method == METHOD_DLM) then
+      c = p%all_a%segments(1, pair(1))
+    else
+      c = pair(1)
     end if
-  end subroutine search_if_due
+  end function key_node
+
+  !> Grow a selection of segments by every segment sharing a node with it.
+  subroutine add_ring(surf, mark)
+    type(contact_surface_t), intent(in) :: surf
+    logical, intent(inout) :: mark(:)
+    logical :: grown(size(mark))
+    integer :: s, c, n, e
+    grown = mark
+    do s = 1, surf%nseg
+      if (.not. mark(s)) cycle
+      do c = 1, 4
+        n = surface_node_index(surf, surf%segments(c, s))
+        do e = surf%node_start(n), surf%node_start(n + 1) - 1
+          grown(surf%node_segments(e)) = .true.
+        end do
+      end do
+    end do
+    mark = grown
+  end subroutine add_ring
+
+  !> The selected segments of a whole surface as a local surface (local node
+  !> numbers, the same order, the whole surface's edge flags); seg_of maps a
+  !> whole-surface segment to its local number.
+  subroutine local_surface(all, mark, l_of, xloc, surf, seg_of)
+    type(contact_surface_t), intent(in) :: all
+    logical, intent(in) :: mark(:)
+    integer, intent(in) :: l_of(:)
+    real(rk), intent(in) :: xloc(:, :)
+    type(contact_surface_t), intent(inout) :: surf
+    integer, allocatable, intent(out) :: seg_of(:)
+    integer, allocatable :: list(:)
+    integer(ik), allocatable :: segments(:, :)
+    integer :: s, j
+    list = pack([(s, s = 1, all%nseg)], mark)
+    allocate(segments(4, size(list)), seg_of(all%nseg))
+    seg_of = 0
+    do j = 1, size(list)
+      segments(:, j) = int(l_of(all%segments(:, list(j))), ik)
+      seg_of(list(j)) = j
+    end do
+    call surface_from_segments(segments, all%segment_id(list), xloc, surf)
+    surf%edge_convex = all%edge_convex(:, list)
+  end subroutine local_surface
+
+  !> Forget a surface's cached geometry (its size changes with the local set).
+  subroutine geometry_free(g)
+    type(surface_geometry_t), intent(inout) :: g
+    if (allocated(g%facets)) deallocate(g%facets, g%normal, g%area, g%quad_normal, g%nodal_area)
+  end subroutine geometry_free
+
+  !> Position of value in an ascending list (it must be there).
+  pure integer function sorted_index(list, value) result(i)
+    integer, intent(in) :: list(:), value
+    integer :: lo, hi
+    lo = 1
+    hi = size(list)
+    do while (lo <= hi)
+      i = (lo + hi) / 2
+      if (list(i) == value) then
+        return
+      else if (list(i) < value) then
+        lo = i + 1
+      else
+        hi = i - 1
+      end if
+    end do
+    i = 0
+  end function sorted_index
+
+  !> x^n, v^n and f of the local set from the mesh owners.
+  subroutine gather_nodes(ct, x_old, v_old, force)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x_old(:, :), v_old(:, :), force(:, :)
+    real(rk), allocatable :: send(:), recv(:)
+    integer :: j, l, i
+    allocate(send(9 * size(ct%send_own)))
+    do j = 1, size(ct%send_own)
+      l = ct%own_local(ct%send_own(j))
+      send(9 * j - 8:9 * j - 6) = x_old(:, l)
+      send(9 * j - 5:9 * j - 3) = v_old(:, l)
+      send(9 * j - 2:9 * j) = force(:, l)
+    end do
+    call par_exchange(send, 9 * ct%send_count, recv, 9 * ct%recv_count)
+    do j = 1, ct%ncn
+      i = ct%recv_local(j)
+      ct%x(:, i) = recv(9 * j - 8:9 * j - 6)
+      ct%v(:, i) = recv(9 * j - 5:9 * j - 3)
+      ct%f(:, i) = recv(9 * j - 2:9 * j)
+    end do
+  end subroutine gather_nodes
+
+  !> Owned values (3, nown, npair) to the local sets (3, ncn, npair).
+  subroutine scatter_nodes(ct, owned, local)
+    type(contact_t), intent(in) :: ct
+    real(rk), intent(in) :: owned(:, :, :)
+    real(rk), allocatable, intent(out) :: local(:, :, :)
+    real(rk), allocatable :: send(:), recv(:)
+    integer :: j, nv, k, i
+    nv = 3 * ct%npair
+    allocate(send(nv * size(ct%send_own)), local(3, ct%ncn, ct%npair))
+    do j = 1, size(ct%send_own)
+      do k = 1, ct%npair
+        send(nv * (j - 1) + 3 * k - 2:nv * (j - 1) + 3 * k) = owned(:, ct%send_own(j), k)
+      end do
+    end do
+    call par_exchange(send, nv * ct%send_count, recv, nv * ct%recv_count)
+    do j = 1, ct%ncn
+      i = ct%recv_local(j)
+      do k = 1, ct%npair
+        local(:, i, k) = recv(nv * (j - 1) + 3 * k - 2:nv * (j - 1) + 3 * k)
+      end do
+    end do
+  end subroutine scatter_nodes
+
+  !> Move a record buffer (its storage) from one holder to another, emptied.
+  subroutine take(from, to, nv)
+    type(records_t), intent(inout) :: from, to
+    integer, intent(in) :: nv !< values per record
+    to%n = 0
+    to%nv = nv
+    if (allocated(from%id)) call move_alloc(from%id, to%id)
+    if (allocated(from%val)) call move_alloc(from%val, to%val)
+    if (allocated(from%isend)) call move_alloc(from%isend, to%isend)
+    if (allocated(from%irecv)) call move_alloc(from%irecv, to%irecv)
+    if (allocated(from%rsend)) call move_alloc(from%rsend, to%rsend)
+    if (allocated(from%rrecv)) call move_alloc(from%rrecv, to%rrecv)
+    if (allocated(from%node)) call move_alloc(from%node, to%node)
+    if (allocated(from%start)) call move_alloc(from%start, to%start)
+    if (allocated(from%place)) call move_alloc(from%place, to%place)
+    from%n = 0
+  end subroutine take
+
+  !> Append one record.
+  subroutine add_record(r, node, k, key, val)
+    type(records_t), intent(inout) :: r
+    integer, intent(in) :: node, k !< contact index, interface
+    integer(i8), intent(in) :: key
+    real(rk), intent(in) :: val(:)
+    integer(i8), allocatable :: grown_id(:, :)
+    real(rk), allocatable :: grown_val(:, :)
+    if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(r%nv, 64))
+    if (r%n == size(r%id, 2)) then
+      allocate(grown_id(3, 2 * r%n), grown_val(r%nv, 2 * r%n))
+      grown_id(:, :r%n) = r%id(:, :r%n)
+      grown_val(:, :r%n) = r%val(:, :r%n)
+      call move_alloc(grown_id, r%id)
+      call move_alloc(grown_val, r%val)
+    end if
+    r%n = r%n + 1
+    r%id(:, r%n) = [int(node, i8), int(k, i8), key]
+    r%val(:, r%n) = val
+  end subroutine add_record
+
+  !> Send every record to the mesh owner of its node; on return r holds the
+  !> records received, sorted by (owned index, interface, key), with id(1, :)
+  !> replaced by the owned index. Each part sends its records in (interface,
+  !> key) order, so a node's records arrive as one ascending run per part:
+  !> a stable bucket sort by node and an insertion sort of each (short,
+  !> nearly sorted) bucket put them in order in linear time.
+  subroutine send_records(ct, r)
+    type(contact_t), intent(in) :: ct
+    type(records_t), intent(inout) :: r
+    integer, allocatable :: count(:), got(:), fill(:)
+    integer(i8) :: id(3)
+    real(rk) :: val(r%nv)
+    integer :: j, o, nranks, nr, d, nv, i, e
+    nranks = par_size()
+    nv = r%nv
+    allocate(count(nranks), got(nranks), fill(nranks))
+    count = 0
+    do j = 1, r%n
+      o = ct%all_owner(r%id(1, j)) + 1
+      count(o) = count(o) + 1
+    end do
+    fill(1) = 0
+    do o = 2, nranks
+      fill(o) = fill(o - 1) + count(o - 1)
+    end do
+    call reserve_i8(r%isend, 3 * r%n)
+    call reserve_real(r%rsend, nv * r%n)
+    do j = 1, r%n
+      o = ct%all_owner(r%id(1, j)) + 1
+      fill(o) = fill(o) + 1
+      d = fill(o)
+      r%isend(3 * d - 2:3 * d) = r%id(:, j)
+      r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
+    end do
+    call par_exchange_counts(count, got)
+    call par_exchange(r%isend, 3 * count, r%irecv, 3 * got)
+    call par_exchange(r%rsend, nv * count, r%rrecv, nv * got)
+    nr = sum(got)
+    r%n = nr
+    if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(nv, 64))
+    if (size(r%id, 2) < nr) then
+      deallocate(r%id, r%val)
+      allocate(r%id(3, 2 * nr), r%val(nv, 2 * nr))
+    end if
+    ! Bucket sort by owned node (stable).
+    if (.not. allocated(r%start)) allocate(r%start(ct%nown + 1))
+    if (.not. allocated(r%place)) allocate(r%place(ct%nown + 1))
+    if (allocated(r%node)) then
+      if (size(r%node) < nr) deallocate(r%node)
+    end if
+    if (.not. allocated(r%node)) allocate(r%node(max(2 * nr, 64)))
+    r%start = 0
+    do j = 1, nr
+      r%node(j) = sorted_index(ct%own_contact, int(r%irecv(3 * j - 2)))
+      r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
+    end do
+    r%start(1) = 1
+    do i = 1, ct%nown
+      r%start(i + 1) = r%start(i + 1) + r%start(i)
+    end do
+    r%place(:ct%nown) = r%start(:ct%nown)
+    do j = 1, nr
+      d = r%place(r%node(j))
+      r%place(r%node(j)) = d + 1
+      r%id(:, d) = [int(r%node(j), i8), r%irecv(3 * j - 1:3 * j)]
+      r%val(:, d) = r%rrecv(nv * (j - 1) + 1:nv * j)
+    end do
+    ! Within a node: (interface, key) ascending.
+    do i = 1, ct%nown
+      do j = r%start(i) + 1, r%start(i + 1) - 1
+        id = r%id(:, j)
+        val = r%val(:, j)
+        e = j - 1
+        do while (e >= r%start(i))
+          if (r%id(2, e) < id(2) .or. (r%id(2, e) == id(2) .and. r%id(3, e) <= id(3))) exit
+          r%id(:, e + 1) = r%id(:, e)
+          r%val(:, e + 1) = r%val(:, e)
+          e = e - 1
+        end do
+        r%id(:, e + 1) = id
+        r%val(:, e + 1) = val
+      end do
+    end do
+  end subroutine send_records
+
+  !> Make a buffer hold at least n elements (grown by doubling, kept).
+  subroutine reserve_i8(a, n)
+    integer(i8), allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    if (allocated(a)) then
+      if (size(a) >= n) return
+      deallocate(a)
+    end if
+    allocate(a(max(2 * n, 64)))
+  end subroutine reserve_i8
+
+  !> Make a buffer hold at least n elements (grown by doubling, kept).
+  subroutine reserve_real(a, n)
+    real(rk), allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    if (allocated(a)) then
+      if (size(a) >= n) return
+      deallocate(a)
+    end if
+    allocate(a(max(2 * n, 64)))
+  end subroutine reserve_real
+
+  !> Sums of 3-vector records per (owned node, interface), in key order.
+  subroutine sum_records(r, fck, has)
+    type(records_t), intent(in) :: r
+    real(rk), intent(inout) :: fck(:, :, :)
+    logical, intent(inout) :: has(:, :)
+    integer :: j, i, k
+    do j = 1, r%n
+      i = int(r%id(1, j))
+      k = int(r%id(2, j))
+      fck(:, i, k) = fck(:, i, k) + r%val(:, j)
+      has(i, k) = .true.
+    end do
+  end subroutine sum_records
+
+  !> DAM at the owners, first round: the exchanged mass, force and momentum
+  !> of the owned nodes summed in key order, then the velocities: free, and
+  !> for master nodes the matched normal component (CONTACT.md 3.3-3.5).
+  subroutine match_masters(ct, r, v_old, force, dt, vmatch, touched)
+    type(contact_t), intent(in) :: ct
+    type(records_t), intent(in) :: r
+    real(rk), intent(in) :: v_old(:, :), force(:, :), dt
+    real(rk), intent(out) :: vmatch(:, :, :)
+    logical, intent(out) :: touched(:, :)
+    real(rk), allocatable :: mbar(:, :), fbar(:, :, :), pbar(:, :, :), nmaster(:, :, :)
+    real(rk) :: unit(3), vn, mass
+    integer :: i, k, j, l
+    allocate(mbar(ct%nown, ct%npair), fbar(3, ct%nown, ct%npair), pbar(3, ct%nown, ct%npair), &
+        nmaster(3, ct%nown, ct%npair))
+    touched = .false.
+    do i = 1, ct%nown
+      l = ct%own_local(i)
+      mass = ct%all_mass(ct%own_contact(i))
+      mbar(i, :) = mass
+      do k = 1, ct%npair
+        fbar(:, i, k) = force(:, l)
+        pbar(:, i, k) = mass * v_old(:, l)
+      end do
+    end do
+    nmaster = 0.0_rk
+    do j = 1, r%n
+      i = int(r%id(1, j))
+      k = int(r%id(2, j))
+      mbar(i, k) = mbar(i, k) + r%val(1, j)
+      fbar(:, i, k) = fbar(:, i, k) + r%val(2:4, j)
+      pbar(:, i, k) = pbar(:, i, k) + r%val(5:7, j)
+      if (mod(r%id(3, j), 2_i8) == 1_i8) then
+        nmaster(:, i, k) = nmaster(:, i, k) + r%val(8:10, j)
+        touched(i, k) = .true.
+      end if
+    end do
+    do i = 1, ct%nown
+      l = ct%own_local(i)
+      mass = ct%all_mass(ct%own_contact(i))
+      do k = 1, ct%npair
+        vmatch(:, i, k) = v_old(:, l) + dt * force(:, l) / mass
+        if (.not. touched(i, k)) cycle
+        if (.not. norm2(nmaster(:, i, k)) > 0.0_rk) cycle
+        unit = nmaster(:, i, k) / norm2(nmaster(:, i, k))
+        vn = dot_product(pbar(:, i, k) + dt * fbar(:, i, k), unit) / mbar(i, k)
+        vmatch(:, i, k) = vmatch(:, i, k) + (vn - dot_product(vmatch(:, i, k), unit)) * unit
+      end do
+    end do
+  end subroutine match_masters
+
+  !> DAM at the owners, second round: the final velocities (the put-back-on
+  !> of enforced slaves, the matched velocity of touched masters) as forces.
+  subroutine dam_forces(ct, r, v_old, force, dt, vmatch, touched, fck, has)
+    type(contact_t), intent(inout) :: ct
+    type(records_t), intent(in) :: r
+    real(rk), intent(in) :: v_old(:, :), force(:, :), dt
+    real(rk), intent(in) :: vmatch(:, :, :)
+    logical, intent(in) :: touched(:, :)
+    real(rk), intent(inout) :: fck(:, :, :)
+    logical, intent(inout) :: has(:, :)
+    real(rk), allocatable :: vfinal(:, :, :)
+    real(rk) :: mass
+    integer :: i, k, j, l
+    allocate(vfinal, source=vmatch)
+    do j = 1, r%n
+      i = int(r%id(1, j))
+      k = int(r%id(2, j))
+      vfinal(:, i, k) = r%val(:, j)
+      has(i, k) = .true.
+    end do
+    do k = 1, ct%npair
+      if (ct%pairs(k)%method /= METHOD_DAM) cycle
+      do i = 1, ct%nown
+        if (.not. (has(i, k) .or. touched(i, k))) cycle
+        has(i, k) = .true.
+        l = ct%own_local(i)
+        mass = ct%all_mass(ct%own_contact(i))
+        fck(:, i, k) = mass * (vfinal(:, i, k) - v_old(:, l)) / dt - force(:, l)
+        ct%pairs(k)%partial(6:8) = ct%pairs(k)%partial(6:8) + mass * (vfinal(:, i, k) - &
+            v_old(:, l)) - dt * force(:, l)
+      end do
+    end do
+  end subroutine dam_forces
+
+  !> Diagnostics of the step from every part's sums; released nodes from the
+  !> owners. Collective.
+  subroutine reduce_diagnostics(ct, has, dt)
+    type(contact_t), intent(inout) :: ct
+    logical, intent(in) :: has(:, :)
+    real(rk), intent(in) :: dt
+    real(rk) :: sums(8), pen_max
+    integer :: k
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        if (p%method == METHOD_DLM) p%partial(6:8) = dt * p%partial(6:8)
+        sums = [p%partial(1:2), p%partial(4:8), &
+            real(count(p%was_active .and. .not. has(:, k)), rk)]
+        p%was_active = has(:, k)
+        call par_sum_array(sums)
+        pen_max = par_max(p%partial(3))
+        if (p%method == METHOD_DLM) then
+          p%diag = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), tiny(1.0_rk))), &
+              sums(8), sums(5:7)]
+        else
+          p%diag = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), 1.0_rk)), &
+              sums(8), sums(5:7)]
+        end if
+      end associate
+    end do
+  end subroutine reduce_diagnostics
 
   !> DAM self-contact: a node is the slave of a segment only from the side
   !> with the lower segment ids (its lowest segment id below the segment's),
@@ -505,7 +1167,7 @@ contains
     call geometry_update(ct%x, p%a, p%ga)
     call geometry_update(ct%x, p%b, p%gb)
     p%nfp = 0
-    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(7, 64))
+    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(7, 64), p%fp_key(64))
     associate(ga => p%ga, gb => p%gb)
       do m = 1, size(p%segment_pairs, 2)
         sa = p%segment_pairs(1, m)
@@ -559,7 +1221,8 @@ contains
             end if
             ! Deeper than half a segment: the far side of a body, not contact.
             if (pen > 0.5_rk * p%size) cycle
-            call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm)
+            call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, &
+                p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8))
           end do
         end do
       end do
@@ -567,40 +1230,47 @@ contains
   end subroutine dlm_geometry
 
   !> Append one facet pair to the interface's cache, growing it when full.
-  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm)
+  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, key)
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: nodeh, noded
     real(rk), intent(in) :: wh, wd, pen, s0, nrm(3)
+    integer(i8), intent(in) :: key !< global order: segment pair, facet of a, facet of b
     integer, allocatable :: grown_node(:, :)
+    integer(i8), allocatable :: grown_key(:)
     real(rk), allocatable :: grown_real(:, :)
     if (p%nfp == size(p%fp_node, 2)) then
-      allocate(grown_node(2, 2 * p%nfp), grown_real(7, 2 * p%nfp))
+      allocate(grown_node(2, 2 * p%nfp), grown_real(7, 2 * p%nfp), grown_key(2 * p%nfp))
       grown_node(:, :p%nfp) = p%fp_node(:, :p%nfp)
       grown_real(:, :p%nfp) = p%fp_real(:, :p%nfp)
+      grown_key(:p%nfp) = p%fp_key(:p%nfp)
       call move_alloc(grown_node, p%fp_node)
       call move_alloc(grown_real, p%fp_real)
+      call move_alloc(grown_key, p%fp_key)
     end if
     p%nfp = p%nfp + 1
     p%fp_node(:, p%nfp) = [nodeh, noded]
     p%fp_real(:, p%nfp) = [wh, wd, pen, s0, nrm]
+    p%fp_key(p%nfp) = key
   end subroutine add_facet_pair
 
   !> DLM: every overlapping facet pair of facing segments is a 1D contact pair
   !> (geometry from dlm_geometry, forces of the stage).
-  subroutine dlm_step(ct, p, dt, final)
-    type(contact_t), intent(inout) :: ct
+  subroutine dlm_step(ct, p, k, dt, final, out)
+    type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
+    integer, intent(in) :: k !< the interface's number
     real(rk), intent(in) :: dt !< the stage's step
-    logical, intent(in) :: final !< the corrector: update the diagnostics
+    logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
+    type(records_t), intent(inout) :: out !< the contributions, for the owners
     real(rk), allocatable :: lambda(:), fc(:, :)
-    logical, allocatable :: gated(:), active_node(:)
+    logical, allocatable :: gated(:)
     real(rk) :: nrm(3), s0, pen, wh, wd
     real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, pen_free, w, target, sum_force, pen_max
-    real(rk) :: pen_sq, momentum(3), area_sum
-    integer :: q, i, nodeh, noded, active, released, sweep
+    real(rk) :: pen_sq, area_sum
+    integer :: q, i, nodeh, noded, active, sweep
 
     if (.not. final .or. .not. allocated(p%fp_node)) call dlm_geometry(ct, p)
-    allocate(lambda(p%nfp), gated(p%nfp), fc(3, ct%ncn), active_node(ct%ncn))
+    allocate(lambda(p%nfp), gated(p%nfp), fc(3, ct%ncn))
     lambda = 0.0_rk
     fc = 0.0_rk
     ! Sweep 1 is the one-pass DLM: every pair from the free (hydro) state.
@@ -654,9 +1324,21 @@ contains
         lambda(q) = fh
       end do
     end do
-    ct%fc = ct%fc + fc
+    ! The contributions: one per pair and node (in single-part mode, where
+    ! Gauss-Seidel sweeps make the order global, one sum per node).
+    if (p%single_part) then
+      do i = 1, ct%ncn
+        if (any(fc(:, i) /= 0.0_rk)) call add_record(out, ct%all_of(i), k, 0_i8, fc(:, i))
+      end do
+    else
+      do q = 1, p%nfp
+        if (lambda(q) == 0.0_rk) cycle
+        nrm = p%fp_real(5:7, q)
+        call add_record(out, ct%all_of(p%fp_node(1, q)), k, p%fp_key(q), lambda(q) * nrm)
+        call add_record(out, ct%all_of(p%fp_node(2, q)), k, p%fp_key(q), -(lambda(q) * nrm))
+      end do
+    end if
 
-    active_node = .false.
     active = 0
     sum_force = 0.0_rk
     pen_max = 0.0_rk
@@ -668,22 +1350,16 @@ contains
       s0 = p%fp_real(4, q)
       active = active + 1
       sum_force = sum_force - lambda(q)
-      active_node(p%fp_node(:, q)) = .true.
       if (pen > 0.0_rk) then
         pen_max = max(pen_max, pen)
         pen_sq = pen_sq + s0 * pen * pen
       end if
       area_sum = area_sum + s0
     end do
-    if (.not. final) return
-    released = count(p%was_active .and. .not. active_node)
-    p%was_active = active_node
-    momentum = 0.0_rk
+    p%partial(1:5) = [real(active, rk), sum_force, pen_max, pen_sq, area_sum]
     do i = 1, ct%ncn
-      momentum = momentum + fc(:, i)
+      p%partial(6:8) = p%partial(6:8) + fc(:, i)
     end do
-    p%diag = [real(active, rk), sum_force, pen_max, &
-        sqrt(pen_sq / max(area_sum, tiny(1.0_rk))), real(released, rk), dt * momentum]
   end subroutine dlm_step
 
   !> Bounding box (min t1, max t1, min t2, max t2) of a facet projected on the
@@ -744,18 +1420,14 @@ contains
     type(interface_t), intent(inout) :: p
     real(rk), intent(in) :: dt !< the full step
     real(rk) :: nf(3), s0, centroid(3), t1(3), t2(3), box_s(4), box_m(4), seg_m(4), pos(3, 4)
-    real(rk) :: speed, capture
+    real(rk) :: capture
     integer :: q, n, k, e, ss, sm, i, j, c, ncand, nex
     integer :: candidates(64)
     logical :: ok
 
     call geometry_update(ct%x, p%a, p%ga)
     call geometry_update(ct%x, p%b, p%gb)
-    speed = 0.0_rk
-    do i = 1, ct%ncn
-      speed = max(speed, norm2(ct%v(:, i)))
-    end do
-    capture = capture_of(p, 2.0_rk * speed, dt)
+    capture = capture_of(p, 2.0_rk * ct%speed, dt)
     call primary_pairs(ct%x, p%b, p%test_pairs, capture, 0.5_rk * p%size, p%primary)
     if (allocated(p%rbf)) deallocate(p%rbf, p%ex_start)
     allocate(p%rbf(4, size(p%primary)), p%ex_start(size(p%primary) + 1))
@@ -823,40 +1495,38 @@ contains
 
   end subroutine dam_geometry
 
-  !> DAM: exchange of mass, force and momentum over the facet overlaps of each
-  !> enforced slave node with the master facets (CONTACT.md 3.3-3.5), then the
-  !> put-back-on of the slave's normal velocity by RBF interpolation of the
-  !> new velocities of its master segment's nodes (3.6). Tangential motion is
-  !> free (frictionless). The corrected velocities become contact forces.
-  subroutine dam_step(ct, p, dt, final)
-    type(contact_t), intent(inout) :: ct
+  !> DAM at the parts, first round: which slave nodes are enforced, and the
+  !> exchange of mass, force and momentum over the facet overlaps of each
+  !> enforced slave with the master facets (CONTACT.md 3.3-3.5), as records
+  !> for the owners of both nodes, keyed (slave, entry, side) in the order of
+  !> a one-rank run.
+  subroutine dam_exchange(ct, p, k, dt, final, out)
+    type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
+    integer, intent(in) :: k !< the interface's number
     real(rk), intent(in) :: dt !< the stage's step
-    logical, intent(in) :: final !< the corrector: update the diagnostics
-    real(rk), allocatable :: mbar(:), fbar(:, :), pbar(:, :), nmaster(:, :), vnew(:, :)
-    logical, allocatable :: enforced(:), touched(:)
+    logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
+    type(records_t), intent(inout) :: out !< nv = 10: mass, force, momentum, master normal
     real(rk) :: nrm(3), shape(4), am, vm, as, vs, gfree, wm, ws, s0
-    real(rk) :: target, pen, pen_max, pen_sq, sum_force, momentum(3), unit(3), vn
-    integer :: q, n, k, e, i, m, active, released, npen
+    integer(i8) :: base
+    integer :: q, n, c, e, m
 
     ! The predictor's step is half the cycle's.
     if (.not. final .or. .not. allocated(p%primary)) call dam_geometry(ct, p, &
         merge(dt, 2.0_rk * dt, final))
-    allocate(mbar(ct%ncn), fbar(3, ct%ncn), pbar(3, ct%ncn), nmaster(3, ct%ncn))
-    allocate(vnew(3, ct%ncn), enforced(ct%ncn), touched(ct%ncn))
 
     ! Which slave nodes are enforced: the free motion would close the gap.
-    enforced = .false.
+    p%enforced = .false.
     do q = 1, size(p%primary)
       n = p%primary(q)%node
       nrm = p%primary(q)%normal
       call bilinear_shape(p%primary(q)%xi, p%primary(q)%eta, shape)
       am = 0.0_rk
       vm = 0.0_rk
-      do k = 1, 4
-        m = p%b%segments(k, p%primary(q)%segment)
-        am = am + shape(k) * dot_product(ct%f(:, m), nrm) / ct%mass(m)
-        vm = vm + shape(k) * dot_product(ct%v(:, m), nrm)
+      do c = 1, 4
+        m = p%b%segments(c, p%primary(q)%segment)
+        am = am + shape(c) * dot_product(ct%f(:, m), nrm) / ct%mass(m)
+        vm = vm + shape(c) * dot_product(ct%v(:, m), nrm)
       end do
       as = dot_product(ct%f(:, n), nrm) / ct%mass(n)
       vs = dot_product(ct%v(:, n), nrm)
@@ -865,49 +1535,44 @@ contains
       ! master (tension); a residual penetration does not hold it. This is
       ! the rule of the unilateral rigid wall, so the mirror test holds.
       if (vs - vm + dt * (as - am) > 0.0_rk) cycle
-      if (gfree < 0.0_rk) enforced(n) = .true.
+      if (gfree < 0.0_rk) p%enforced(n) = .true.
     end do
 
     ! Exchange over the cached facet overlaps.
-    mbar = ct%mass
-    fbar = ct%f
-    do i = 1, ct%ncn
-      pbar(:, i) = ct%mass(i) * ct%v(:, i)
-    end do
-    nmaster = 0.0_rk
-    touched = .false.
     do q = 1, size(p%primary)
       n = p%primary(q)%node
-      if (.not. enforced(n)) cycle
+      if (.not. p%enforced(n)) cycle
+      base = int(ct%all_of(n), i8) * 65536_i8
       do e = p%ex_start(q), p%ex_start(q + 1) - 1
         m = p%ex_master(e)
         wm = p%ex_real(1, e)
         ws = p%ex_real(2, e)
         s0 = p%ex_real(3, e)
-        mbar(n) = mbar(n) + ct%mass(m) * wm
-        mbar(m) = mbar(m) + ct%mass(n) * ws
-        fbar(:, n) = fbar(:, n) + ct%f(:, m) * wm
-        fbar(:, m) = fbar(:, m) + ct%f(:, n) * ws
-        pbar(:, n) = pbar(:, n) + ct%mass(m) * ct%v(:, m) * wm
-        pbar(:, m) = pbar(:, m) + ct%mass(n) * ct%v(:, n) * ws
-        nmaster(:, m) = nmaster(:, m) + s0 * p%primary(q)%normal
-        touched(m) = .true.
+        call add_record(out, ct%all_of(n), k, base + int(2 * (e - p%ex_start(q)), i8), &
+            [ct%mass(m) * wm, ct%f(:, m) * wm, ct%mass(m) * ct%v(:, m) * wm, 0.0_rk, 0.0_rk, &
+            0.0_rk])
+        call add_record(out, ct%all_of(m), k, base + int(2 * (e - p%ex_start(q)) + 1, i8), &
+            [ct%mass(n) * ws, ct%f(:, n) * ws, ct%mass(n) * ct%v(:, n) * ws, &
+            s0 * p%primary(q)%normal])
       end do
     end do
+  end subroutine dam_exchange
 
-    ! Free velocities, then the matched normal components of the master nodes.
-    do i = 1, ct%ncn
-      vnew(:, i) = ct%v(:, i) + dt * ct%f(:, i) / ct%mass(i)
-    end do
-    do m = 1, ct%ncn
-      if (.not. touched(m)) cycle
-      if (.not. norm2(nmaster(:, m)) > 0.0_rk) cycle
-      unit = nmaster(:, m) / norm2(nmaster(:, m))
-      vn = dot_product(pbar(:, m) + dt * fbar(:, m), unit) / mbar(m)
-      vnew(:, m) = vnew(:, m) + (vn - dot_product(vnew(:, m), unit)) * unit
-    end do
+  !> DAM at the parts, second round: the put-back-on of each enforced slave's
+  !> normal velocity by RBF interpolation of the matched velocities vm of its
+  !> master segment's nodes (CONTACT.md 3.6); tangential motion is free
+  !> (frictionless). vm are the velocities after the master matching and
+  !> before any put-back (in self-contact a master node may be a slave too).
+  subroutine dam_put_back(ct, p, k, dt, vm, out)
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    integer, intent(in) :: k !< the interface's number
+    real(rk), intent(in) :: dt !< the stage's step
+    real(rk), intent(in) :: vm(:, :) !< (3, ncn) matched velocities of the local set
+    type(records_t), intent(inout) :: out !< nv = 3: the slave's final velocity
+    real(rk) :: nrm(3), target, pen, pen_max, pen_sq, sum_force, vnew(3)
+    integer :: q, n, c, active, npen
 
-    ! Put-back-on: the slave's normal velocity from its master nodes.
     active = 0
     npen = 0
     pen_max = 0.0_rk
@@ -915,15 +1580,18 @@ contains
     sum_force = 0.0_rk
     do q = 1, size(p%primary)
       n = p%primary(q)%node
-      if (.not. enforced(n)) cycle
+      if (.not. p%enforced(n)) cycle
       active = active + 1
       nrm = p%primary(q)%normal
       target = 0.0_rk
-      do k = 1, 4
-        target = target + p%rbf(k, q) * dot_product(vnew(:, p%b%segments(k, &
+      do c = 1, 4
+        target = target + p%rbf(c, q) * dot_product(vm(:, p%b%segments(c, &
             p%primary(q)%segment)), nrm)
       end do
-      vnew(:, n) = vnew(:, n) + (target - dot_product(vnew(:, n), nrm)) * nrm
+      vnew = vm(:, n) + (target - dot_product(vm(:, n), nrm)) * nrm
+      call add_record(out, ct%all_of(n), k, int(ct%all_of(n), i8), vnew)
+      sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &
+          ct%f(:, n), nrm), 0.0_rk)
       pen = -p%primary(q)%gap
       if (pen > 0.0_rk) then
         pen_max = max(pen_max, pen)
@@ -931,25 +1599,8 @@ contains
         npen = npen + 1
       end if
     end do
-
-    ! The corrected velocities as contact forces.
-    momentum = 0.0_rk
-    do i = 1, ct%ncn
-      if (.not. (enforced(i) .or. touched(i))) cycle
-      ct%fc(:, i) = ct%fc(:, i) + ct%mass(i) * (vnew(:, i) - ct%v(:, i)) / dt - ct%f(:, i)
-      momentum = momentum + ct%mass(i) * (vnew(:, i) - ct%v(:, i)) - dt * ct%f(:, i)
-    end do
-    do q = 1, size(p%primary)
-      n = p%primary(q)%node
-      if (enforced(n)) sum_force = sum_force + max(dot_product(ct%mass(n) * &
-          (vnew(:, n) - ct%v(:, n)) / dt - ct%f(:, n), p%primary(q)%normal), 0.0_rk)
-    end do
-    if (.not. final) return
-    released = count(p%was_active .and. .not. (enforced .or. touched))
-    p%was_active = enforced .or. touched
-    p%diag = [real(active, rk), sum_force, pen_max, &
-        sqrt(pen_sq / real(max(npen, 1), rk)), real(released, rk), momentum]
-  end subroutine dam_step
+    p%partial(1:5) = [real(active, rk), sum_force, pen_max, pen_sq, real(npen, rk)]
+  end subroutine dam_put_back
 
   !> Bilinear shape functions of a segment at natural coordinates (xi, eta).
   pure subroutine bilinear_shape(xi, eta, shape)
@@ -1003,7 +1654,7 @@ contains
     work = 0.0_rk
     do i = 1, ct%nown
       n = ct%own_local(i)
-      work = work + 0.5_rk * dt * dot_product(ct%fc(:, ct%own_contact(i)), &
+      work = work + 0.5_rk * dt * dot_product(ct%fc(:, i), &
           v_old(:, n) + v_new(:, n))
     end do
   end function contact_work_update
@@ -1018,6 +1669,30 @@ contains
       diag(:, k) = ct%pairs(k)%diag
     end do
   end function contact_diagnostics
+
+  !> End-of-run summary on rank 0: the contact time split (largest over the
+  !> ranks) and the local sets against the whole contact surface. Collective.
+  subroutine contact_report(ct, loop_seconds)
+    type(contact_t), intent(in) :: ct
+    real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
+    real(rk) :: search, enforce, migrate, total, loop
+    integer :: largest, smallest
+    search = par_max(ct%search_seconds)
+    enforce = par_max(ct%enforce_seconds)
+    migrate = par_max(ct%migrate_seconds)
+    total = par_max(ct%search_seconds + ct%enforce_seconds + ct%migrate_seconds)
+    largest = par_max(ct%ncn_max)
+    smallest = -par_max(-ct%ncn_max)
+    loop = par_max(loop_seconds)
+    if (par_rank() /= 0) return
+    write(output_unit, '(a,3(f10.3,a),f6.1,a)') 'impact3d: contact ', search, &
+        ' s search and RCB, ', enforce, ' s enforcement, ', migrate, ' s migration (', &
+        100.0_rk * total / max(loop, 1.0e-9_rk), &
+        '% of the loop; largest over the ranks)'
+    write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'impact3d: contact local sets ', smallest, &
+        ' to ', largest, ' nodes per rank of ', ct%nall, ' contact nodes; ', ct%rebuilds, &
+        ' global searches'
+  end subroutine contact_report
 
   !> Sort ascending and drop repeats.
   subroutine sort_unique(a)

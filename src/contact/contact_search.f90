@@ -54,7 +54,7 @@ module contact_search
   private
   public :: segment_territory, bucket_search, closest_point, contact_kind, primary_pairs
   public :: pair_excluded, search_interval, largest_relative_speed, segment_pair_search
-  public :: find_key, sort_real
+  public :: find_key, sort_real, sort_by_key
 
   !> No contact.
   integer, parameter, public :: KIND_NONE = 0
