@@ -105,9 +105,10 @@ def h5same(a, b):
 
 def cmd_bitwise(args):
     ref = None
+    deck = variant_deck(args) if args.replace else args.deck
     for np in args.ranks:
         wd = os.path.join(args.workdir, "np%d" % np)
-        code, out, err = run(args, np, wd, args.deck)
+        code, out, err = run(args, np, wd, deck)
         check("run on %d rank(s) exits 0" % np, code == 0, err[-2000:])
         if code != 0:
             return
@@ -1003,7 +1004,7 @@ def main():
     p.add_argument("--max-pen", type=float, default=float("inf"))
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
     p.add_argument("--replace", nargs=2, action="append", metavar=("OLD", "NEW"),
-                   help="signal, walllimit: edit the deck text before running")
+                   help="signal, walllimit, bitwise: edit the deck text before running")
     p.add_argument("--signal", default="USR1", choices=["USR1", "USR2", "TERM"])
     p.add_argument("--to", default="mpirun", choices=["mpirun", "rank"],
                    help="signal: send to mpirun, or to the last rank's process only")
