@@ -205,6 +205,7 @@ module contact_enforce
     integer :: nown = 0
     integer, allocatable :: own_contact(:) !< (nown) contact index, ascending
     integer, allocatable :: own_local(:) !< (nown) local mesh node index
+    integer, allocatable :: own_of(:) !< (nall) owned index of a contact node, 0 if not owned
     real(rk), allocatable :: fc(:, :) !< (3, nown) contact force of the stage
     ! This rank's RCB part.
     integer :: ncn = 0 !< nodes of the local set
@@ -316,6 +317,11 @@ contains
     end do
     ct%own_contact = ct%own_contact(:ct%nown)
     ct%own_local = ct%own_local(:ct%nown)
+    allocate(ct%own_of(ct%nall))
+    ct%own_of = 0
+    do i = 1, ct%nown
+      ct%own_of(ct%own_contact(i)) = i
+    end do
     allocate(packed(2, ct%nall))
     packed = 0.0_rk
     do i = 1, ct%nown
@@ -646,7 +652,7 @@ contains
     if (allocated(ct%send_own)) deallocate(ct%send_own)
     allocate(ct%send_own(size(wanted)))
     do j = 1, size(wanted)
-      ct%send_own(j) = sorted_index(ct%own_contact, int(wanted(j)))
+      ct%send_own(j) = ct%own_of(wanted(j))
     end do
   end subroutine contact_rebuild
 
@@ -710,25 +716,6 @@ contains
     type(surface_geometry_t), intent(inout) :: g
     if (allocated(g%facets)) deallocate(g%facets, g%normal, g%area, g%quad_normal, g%nodal_area)
   end subroutine geometry_free
-
-  !> Position of value in an ascending list (it must be there).
-  pure integer function sorted_index(list, value) result(i)
-    integer, intent(in) :: list(:), value
-    integer :: lo, hi
-    lo = 1
-    hi = size(list)
-    do while (lo <= hi)
-      i = (lo + hi) / 2
-      if (list(i) == value) then
-        return
-      else if (list(i) < value) then
-        lo = i + 1
-      else
-        hi = i - 1
-      end if
-    end do
-    i = 0
-  end function sorted_index
 
   !> x^n, v^n and f of the local set from the mesh owners.
   subroutine gather_nodes(ct, x_old, v_old, force)
@@ -867,7 +854,7 @@ contains
     if (.not. allocated(r%node)) allocate(r%node(max(2 * nr, 64)))
     r%start = 0
     do j = 1, nr
-      r%node(j) = sorted_index(ct%own_contact, int(r%irecv(3 * j - 2)))
+      r%node(j) = ct%own_of(r%irecv(3 * j - 2))
       r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
     end do
     r%start(1) = 1
@@ -1510,6 +1497,7 @@ contains
     real(rk) :: nrm(3), shape(4), am, vm, as, vs, gfree, wm, ws, s0
     integer(i8) :: base
     integer :: q, n, c, e, m
+    logical :: also_master
 
     ! The predictor's step is half the cycle's.
     if (.not. final .or. .not. allocated(p%primary)) call dam_geometry(ct, p, &
@@ -1543,14 +1531,16 @@ contains
       n = p%primary(q)%node
       if (.not. p%enforced(n)) cycle
       base = int(ct%all_of(n), i8) * 65536_i8
+      ! The slave's own sums matter only where it is a master node too.
+      also_master = surface_node_index(p%b, int(n, ik)) > 0
       do e = p%ex_start(q), p%ex_start(q + 1) - 1
         m = p%ex_master(e)
         wm = p%ex_real(1, e)
         ws = p%ex_real(2, e)
         s0 = p%ex_real(3, e)
-        call add_record(out, ct%all_of(n), k, base + int(2 * (e - p%ex_start(q)), i8), &
-            [ct%mass(m) * wm, ct%f(:, m) * wm, ct%mass(m) * ct%v(:, m) * wm, 0.0_rk, 0.0_rk, &
-            0.0_rk])
+        if (also_master) call add_record(out, ct%all_of(n), k, base + &
+            int(2 * (e - p%ex_start(q)), i8), [ct%mass(m) * wm, ct%f(:, m) * wm, &
+            ct%mass(m) * ct%v(:, m) * wm, 0.0_rk, 0.0_rk, 0.0_rk])
         call add_record(out, ct%all_of(m), k, base + int(2 * (e - p%ex_start(q)) + 1, i8), &
             [ct%mass(n) * ws, ct%f(:, n) * ws, ct%mass(n) * ct%v(:, n) * ws, &
             s0 * p%primary(q)%normal])
