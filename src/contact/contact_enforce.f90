@@ -1665,8 +1665,8 @@ contains
   subroutine contact_report(ct, loop_seconds)
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
-    real(rk) :: search, enforce, migrate, total, loop
-    integer :: largest, smallest
+    real(rk) :: search, enforce, migrate, total, loop, whole, local
+    integer :: largest, smallest, k
     search = par_max(ct%search_seconds)
     enforce = par_max(ct%enforce_seconds)
     migrate = par_max(ct%migrate_seconds)
@@ -1674,6 +1674,24 @@ contains
     largest = par_max(ct%ncn_max)
     smallest = -par_max(-ct%ncn_max)
     loop = par_max(loop_seconds)
+    ! Memory: the static whole-surface data every rank holds, and this part's
+    ! working data (local set, local surfaces, geometry and pair caches).
+    whole = real(ct%nall, rk) * real(storage_size(ct%all_gid) + storage_size(ct%all_mass) + &
+        2 * storage_size(ct%all_owner), rk) / 8.0_rk
+    local = real(ct%ncn_max, rk) * real(10 * storage_size(1.0_rk) + storage_size(1), rk) / 8.0_rk
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b)
+        local = local + surface_bytes(p%a) + surface_bytes(p%b) + geometry_bytes(p%ga) + &
+            geometry_bytes(p%gb)
+        if (allocated(p%fp_real)) local = local + real(size(p%fp_real), rk) * 8.0_rk + &
+            real(size(p%fp_node), rk) * 4.0_rk + real(size(p%fp_key), rk) * 8.0_rk
+        if (allocated(p%ex_real)) local = local + real(size(p%ex_real), rk) * 8.0_rk + &
+            real(size(p%ex_master), rk) * 4.0_rk
+      end associate
+    end do
+    whole = par_max(whole)
+    local = par_max(local)
     if (par_rank() /= 0) return
     write(output_unit, '(a,3(f10.3,a),f6.1,a)') 'impact3d: contact ', search, &
         ' s search and RCB, ', enforce, ' s enforcement, ', migrate, ' s migration (', &
@@ -1682,6 +1700,29 @@ contains
     write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'impact3d: contact local sets ', smallest, &
         ' to ', largest, ' nodes per rank of ', ct%nall, ' contact nodes; ', ct%rebuilds, &
         ' global searches'
+    write(output_unit, '(a,f10.3,a,f10.3,a)') 'impact3d: contact memory per rank ', &
+        local / 1.0e6_rk, ' MB working set (largest), ', whole / 1.0e6_rk, &
+        ' MB whole-surface topology (every rank)'
+
+  contains
+
+    real(rk) function surface_bytes(surf) result(b)
+      type(contact_surface_t), intent(in) :: surf
+      b = 0.0_rk
+      if (.not. allocated(surf%segments)) return
+      b = real(size(surf%segments) + size(surf%nodes) + size(surf%node_start) + &
+          size(surf%node_segments) + size(surf%neighbours) + size(surf%edge_convex), rk) * 4.0_rk + &
+          real(size(surf%segment_id), rk) * 8.0_rk
+    end function surface_bytes
+
+    real(rk) function geometry_bytes(g) result(b)
+      type(surface_geometry_t), intent(in) :: g
+      b = 0.0_rk
+      if (.not. allocated(g%facets)) return
+      b = real(size(g%facets) + size(g%normal) + size(g%area) + size(g%quad_normal) + &
+          size(g%nodal_area), rk) * 8.0_rk
+    end function geometry_bytes
+
   end subroutine contact_report
 
   !> Sort ascending and drop repeats.
