@@ -6,7 +6,7 @@ module app_run
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_value, ieee_quiet_nan
   use core_kinds, only: rk, i8
   use core_status, only: status_t
-  use core_timer, only: wall_time
+  use core_timer, only: wall_time, timer_t
   use core_signal, only: signal_caught, signal_name
   use mesh_global, only: global_mesh_t
   use mesh_local, only: mesh_t
@@ -24,7 +24,7 @@ module app_run
   use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
       contact_report, &
       contact_diagnostics, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
-  use parallel_env, only: par_rank, par_size, par_allgather, par_sum, par_sum_array, par_bcast
+  use parallel_env, only: par_rank, par_size, par_allgather, par_sum, par_sum_array, par_bcast, par_max
   implicit none
   private
   public :: run_deck
@@ -252,13 +252,14 @@ contains
     real(rk), intent(in) :: wall_read !< seconds the restart read took (0 for a new run)
     integer, intent(out) :: code
     real(rk) :: dt, dt_stable, next_dump, work, wall_start, wall_status, work_sum, contact_work
-    real(rk) :: wall_output, wall_mark
+    real(rk) :: wall_output, wall_mark, halo_max
     integer(i8) :: cycle_status
     integer :: bad, bad_half
     logical :: last, dump_now, ok, exists
     integer :: request, signum
     real(rk) :: wall_cycle_start, cycle_wall, wall_dump
     character(len=16) :: reason
+    type(timer_t) :: halo
 
     code = EXIT_OK
     wall_start = wall_time()
@@ -327,7 +328,7 @@ contains
 
       if (state%cycle + 1 == config%fault_cycle .and. config%fault_kind == 'tangle') &
           call inject_tangle(mesh, state)
-      call step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work)
+      call step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work, halo)
       state%boundary_work = state%boundary_work + par_sum(work)
       if (ct%npair > 0) call contact_cycle_end(config, ct, state, par_sum(contact_work))
       state%time = state%time + dt
@@ -431,6 +432,9 @@ contains
       code = EXIT_FAILURE
       return
     end if
+    halo_max = par_max(halo%total)
+    if (par_rank() == 0) write(output_unit, '(a,f10.3,a)') 'impact3d: node halo exchange ', &
+        halo_max, ' s (largest over the ranks)'
     if (ct%npair > 0) call contact_report(ct, wall_time() - wall_start - wall_output)
     if (par_rank() == 0) write(output_unit, '(a,i0,a,f10.3,a,f8.3,a)') 'impact3d: done, ', &
         state%cycle, ' cycles, ', wall_time() - wall_start, ' s (', wall_output, &
@@ -500,7 +504,7 @@ contains
   end subroutine inject_tangle
 
   !> One predictor-corrector cycle from t^n to t^n+1.
-  subroutine step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work)
+  subroutine step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work, halo)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
@@ -511,6 +515,7 @@ contains
     integer, intent(out) :: bad_half, bad
     real(rk), intent(out) :: work !< boundary work of the step (local)
     real(rk), intent(out) :: contact_work !< contact work of the step (local)
+    type(timer_t), intent(inout) :: halo !< time in the node halo exchanges
     real(rk) :: unused
     integer :: n
     logical :: strength
@@ -535,7 +540,9 @@ contains
     if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
         state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
     call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
+    call halo%start()
     call mesh%node_halo%exchange(state%node_velocity_half)
+    call halo%stop()
     do n = 1, mesh%nnode
       state%node_position(:, n) = state%node_position_old(:, n) + 0.5_rk * dt * &
           state%node_velocity_half(:, n)
@@ -561,7 +568,9 @@ contains
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
     if (ct%npair > 0) contact_work = contact_work_update(ct, state%node_velocity_old, &
         state%node_velocity, dt)
+    call halo%start()
     call mesh%node_halo%exchange(state%node_velocity)
+    call halo%stop()
     do n = 1, mesh%nnode
       state%node_velocity_half(:, n) = 0.5_rk * (state%node_velocity_old(:, n) + &
           state%node_velocity(:, n))
