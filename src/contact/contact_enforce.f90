@@ -1495,6 +1495,7 @@ contains
     logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
     type(records_t), intent(inout) :: out !< nv = 10: mass, force, momentum, master normal
     real(rk) :: nrm(3), shape(4), am, vm, as, vs, gfree, wm, ws, s0
+    real(rk) :: buf(10)
     integer(i8) :: base
     integer :: q, n, c, e, m
     logical :: also_master
@@ -1538,12 +1539,20 @@ contains
         wm = p%ex_real(1, e)
         ws = p%ex_real(2, e)
         s0 = p%ex_real(3, e)
-        if (also_master) call add_record(out, ct%all_of(n), k, base + &
-            int(2 * (e - p%ex_start(q)), i8), [ct%mass(m) * wm, ct%f(:, m) * wm, &
-            ct%mass(m) * ct%v(:, m) * wm, 0.0_rk, 0.0_rk, 0.0_rk])
-        call add_record(out, ct%all_of(m), k, base + int(2 * (e - p%ex_start(q)) + 1, i8), &
-            [ct%mass(n) * ws, ct%f(:, n) * ws, ct%mass(n) * ct%v(:, n) * ws, &
-            s0 * p%primary(q)%normal])
+        ! (Values assembled in a fixed-size buffer: an array constructor of
+        ! sections is built on the heap.)
+        if (also_master) then
+          buf(1) = ct%mass(m) * wm
+          buf(2:4) = ct%f(:, m) * wm
+          buf(5:7) = ct%mass(m) * ct%v(:, m) * wm
+          buf(8:10) = 0.0_rk
+          call add_record(out, ct%all_of(n), k, base + int(2 * (e - p%ex_start(q)), i8), buf)
+        end if
+        buf(1) = ct%mass(n) * ws
+        buf(2:4) = ct%f(:, n) * ws
+        buf(5:7) = ct%mass(n) * ct%v(:, n) * ws
+        buf(8:10) = s0 * p%primary(q)%normal
+        call add_record(out, ct%all_of(m), k, base + int(2 * (e - p%ex_start(q)) + 1, i8), buf)
       end do
     end do
   end subroutine dam_exchange
