@@ -650,8 +650,9 @@ contains
     call par_exchange_counts(ct%recv_count, ct%send_count)
     call par_exchange(request, ct%recv_count, wanted, ct%send_count)
     if (allocated(ct%send_own)) deallocate(ct%send_own)
-    allocate(ct%send_own(size(wanted)))
-    do j = 1, size(wanted)
+    ! (The receive buffer may be longer than what arrived.)
+    allocate(ct%send_own(sum(ct%send_count)))
+    do j = 1, size(ct%send_own)
       ct%send_own(j) = ct%own_of(wanted(j))
     end do
   end subroutine contact_rebuild
