@@ -75,11 +75,14 @@ module contact_enforce
   use, intrinsic :: iso_fortran_env, only: output_unit
   use mesh_global, only: global_mesh_t, NAME_LEN
   use mesh_local, only: mesh_t
-  use contact_geometry, only: segment_facets, corner_areas, quad_unit_normal, &
-      triangle_unit_normal, triangle_overlap, triangle_overlap_2d, triangle_vector_area, SEGMENT_FACET_COUNT, &
-      FACET_CORNER, tangent_basis
+  use contact_geometry, only: segment_facets, quad_unit_normal, triangle_unit_normal, &
+      triangle_overlap, triangle_overlap_2d, triangle_vector_area, SEGMENT_FACET_COUNT, &
+      FACET_CORNER, tangent_basis, segment_box, project_facets, facet_box, boxes_meet, covered, &
+      plane_offset, bilinear_shape
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
-      surface_update_edges, surface_node_index, set_names_of
+      surface_update_edges, surface_node_index, set_names_of, add_ring, local_surface, &
+      master_neighbourhood, keep_lower_side, nodal_areas
+  use contact_records, only: records_t, take, add_record, send_records, sum_records
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
       search_interval, find_key, sort_real
   use contact_rbf, only: rbf_weights
@@ -169,20 +172,6 @@ module contact_enforce
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     logical, public :: warned = .false. !< the penetration warning was given
   end type interface_t
-
-  !> Contributions travelling from the parts to the mesh owners: ids
-  !> (contact index, interface, key) and nv values each.
-  type :: records_t
-    integer :: n = 0
-    integer :: nv = 3
-    integer(i8), allocatable :: id(:, :) !< (3, capacity)
-    real(rk), allocatable :: val(:, :) !< (nv, capacity)
-    ! Buffers of the exchange, kept from stage to stage.
-    integer(i8), allocatable :: isend(:), irecv(:)
-    real(rk), allocatable :: rsend(:), rrecv(:)
-    integer, allocatable :: node(:) !< (capacity) owned index of a received record
-    integer, allocatable :: start(:), place(:) !< (nown + 1) buckets of the owned nodes
-  end type records_t
 
   !> One interface's pairs from the global search, and the segments of the
   !> whole surfaces a part reads (during a rebuild).
@@ -437,10 +426,10 @@ contains
     allocate(fck(3, ct%nown, ct%npair), has(ct%nown, ct%npair))
     fck = 0.0_rk
     has = .false.
-    call send_records(ct, dlm_out)
+    call send_records(dlm_out, ct%all_owner, ct%own_of, ct%nown)
     call sum_records(dlm_out, fck, has)
     if (any_dam) then
-      call send_records(ct, dam_out)
+      call send_records(dam_out, ct%all_owner, ct%own_of, ct%nown)
       allocate(vmatch(3, ct%nown, ct%npair), touched(ct%nown, ct%npair))
       call match_masters(ct, dam_out, v_old, force, dt, vmatch, touched)
       call scatter_nodes(ct, vmatch, vm_local)
@@ -450,7 +439,7 @@ contains
             vm_local(:, :, k), putback)
       end do
       call lap(ct%enforce_seconds)
-      call send_records(ct, putback)
+      call send_records(putback, ct%all_owner, ct%own_of, ct%nown)
       call dam_forces(ct, putback, v_old, force, dt, vmatch, touched, fck, has)
     end if
     ct%fc = 0.0_rk
@@ -669,49 +658,6 @@ contains
     end if
   end function key_node
 
-  !> Grow a selection of segments by every segment sharing a node with it.
-  subroutine add_ring(surf, mark)
-    type(contact_surface_t), intent(in) :: surf
-    logical, intent(inout) :: mark(:)
-    logical :: grown(size(mark))
-    integer :: s, c, n, e
-    grown = mark
-    do s = 1, surf%nseg
-      if (.not. mark(s)) cycle
-      do c = 1, 4
-        n = surface_node_index(surf, surf%segments(c, s))
-        do e = surf%node_start(n), surf%node_start(n + 1) - 1
-          grown(surf%node_segments(e)) = .true.
-        end do
-      end do
-    end do
-    mark = grown
-  end subroutine add_ring
-
-  !> The selected segments of a whole surface as a local surface (local node
-  !> numbers, the same order, the whole surface's edge flags); seg_of maps a
-  !> whole-surface segment to its local number.
-  subroutine local_surface(all, mark, l_of, xloc, surf, seg_of)
-    type(contact_surface_t), intent(in) :: all
-    logical, intent(in) :: mark(:)
-    integer, intent(in) :: l_of(:)
-    real(rk), intent(in) :: xloc(:, :)
-    type(contact_surface_t), intent(inout) :: surf
-    integer, allocatable, intent(out) :: seg_of(:)
-    integer, allocatable :: list(:)
-    integer(ik), allocatable :: segments(:, :)
-    integer :: s, j
-    list = pack([(s, s = 1, all%nseg)], mark)
-    allocate(segments(4, size(list)), seg_of(all%nseg))
-    seg_of = 0
-    do j = 1, size(list)
-      segments(:, j) = int(l_of(all%segments(:, list(j))), ik)
-      seg_of(list(j)) = j
-    end do
-    call surface_from_segments(segments, all%segment_id(list), xloc, surf)
-    surf%edge_convex = all%edge_convex(:, list)
-  end subroutine local_surface
-
   !> Forget a surface's cached geometry (its size changes with the local set).
   subroutine geometry_free(g)
     type(surface_geometry_t), intent(inout) :: g
@@ -762,166 +708,6 @@ contains
       end do
     end do
   end subroutine scatter_nodes
-
-  !> Move a record buffer (its storage) from one holder to another, emptied.
-  subroutine take(from, to, nv)
-    type(records_t), intent(inout) :: from, to
-    integer, intent(in) :: nv !< values per record
-    to%n = 0
-    to%nv = nv
-    if (allocated(from%id)) call move_alloc(from%id, to%id)
-    if (allocated(from%val)) call move_alloc(from%val, to%val)
-    if (allocated(from%isend)) call move_alloc(from%isend, to%isend)
-    if (allocated(from%irecv)) call move_alloc(from%irecv, to%irecv)
-    if (allocated(from%rsend)) call move_alloc(from%rsend, to%rsend)
-    if (allocated(from%rrecv)) call move_alloc(from%rrecv, to%rrecv)
-    if (allocated(from%node)) call move_alloc(from%node, to%node)
-    if (allocated(from%start)) call move_alloc(from%start, to%start)
-    if (allocated(from%place)) call move_alloc(from%place, to%place)
-    from%n = 0
-  end subroutine take
-
-  !> Append one record.
-  subroutine add_record(r, node, k, key, val)
-    type(records_t), intent(inout) :: r
-    integer, intent(in) :: node, k !< contact index, interface
-    integer(i8), intent(in) :: key
-    real(rk), intent(in) :: val(:)
-    integer(i8), allocatable :: grown_id(:, :)
-    real(rk), allocatable :: grown_val(:, :)
-    if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(r%nv, 64))
-    if (r%n == size(r%id, 2)) then
-      allocate(grown_id(3, 2 * r%n), grown_val(r%nv, 2 * r%n))
-      grown_id(:, :r%n) = r%id(:, :r%n)
-      grown_val(:, :r%n) = r%val(:, :r%n)
-      call move_alloc(grown_id, r%id)
-      call move_alloc(grown_val, r%val)
-    end if
-    r%n = r%n + 1
-    r%id(:, r%n) = [int(node, i8), int(k, i8), key]
-    r%val(:, r%n) = val
-  end subroutine add_record
-
-  !> Send every record to the mesh owner of its node; on return r holds the
-  !> records received, sorted by (owned index, interface, key), with id(1, :)
-  !> replaced by the owned index. Each part sends its records in (interface,
-  !> key) order, so a node's records arrive as one ascending run per part:
-  !> a stable bucket sort by node and an insertion sort of each (short,
-  !> nearly sorted) bucket put them in order in linear time.
-  subroutine send_records(ct, r)
-    type(contact_t), intent(in) :: ct
-    type(records_t), intent(inout) :: r
-    integer, allocatable :: count(:), got(:), fill(:)
-    integer(i8) :: id(3)
-    real(rk) :: val(r%nv)
-    integer :: j, o, nranks, nr, d, nv, i, e
-    nranks = par_size()
-    nv = r%nv
-    allocate(count(nranks), got(nranks), fill(nranks))
-    count = 0
-    do j = 1, r%n
-      o = ct%all_owner(r%id(1, j)) + 1
-      count(o) = count(o) + 1
-    end do
-    fill(1) = 0
-    do o = 2, nranks
-      fill(o) = fill(o - 1) + count(o - 1)
-    end do
-    call reserve_i8(r%isend, 3 * r%n)
-    call reserve_real(r%rsend, nv * r%n)
-    do j = 1, r%n
-      o = ct%all_owner(r%id(1, j)) + 1
-      fill(o) = fill(o) + 1
-      d = fill(o)
-      r%isend(3 * d - 2:3 * d) = r%id(:, j)
-      r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
-    end do
-    call par_exchange_counts(count, got)
-    call par_exchange(r%isend, 3 * count, r%irecv, 3 * got)
-    call par_exchange(r%rsend, nv * count, r%rrecv, nv * got)
-    nr = sum(got)
-    r%n = nr
-    if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(nv, 64))
-    if (size(r%id, 2) < nr) then
-      deallocate(r%id, r%val)
-      allocate(r%id(3, 2 * nr), r%val(nv, 2 * nr))
-    end if
-    ! Bucket sort by owned node (stable).
-    if (.not. allocated(r%start)) allocate(r%start(ct%nown + 1))
-    if (.not. allocated(r%place)) allocate(r%place(ct%nown + 1))
-    if (allocated(r%node)) then
-      if (size(r%node) < nr) deallocate(r%node)
-    end if
-    if (.not. allocated(r%node)) allocate(r%node(max(2 * nr, 64)))
-    r%start = 0
-    do j = 1, nr
-      r%node(j) = ct%own_of(r%irecv(3 * j - 2))
-      r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
-    end do
-    r%start(1) = 1
-    do i = 1, ct%nown
-      r%start(i + 1) = r%start(i + 1) + r%start(i)
-    end do
-    r%place(:ct%nown) = r%start(:ct%nown)
-    do j = 1, nr
-      d = r%place(r%node(j))
-      r%place(r%node(j)) = d + 1
-      r%id(:, d) = [int(r%node(j), i8), r%irecv(3 * j - 1:3 * j)]
-      r%val(:, d) = r%rrecv(nv * (j - 1) + 1:nv * j)
-    end do
-    ! Within a node: (interface, key) ascending.
-    do i = 1, ct%nown
-      do j = r%start(i) + 1, r%start(i + 1) - 1
-        id = r%id(:, j)
-        val = r%val(:, j)
-        e = j - 1
-        do while (e >= r%start(i))
-          if (r%id(2, e) < id(2) .or. (r%id(2, e) == id(2) .and. r%id(3, e) <= id(3))) exit
-          r%id(:, e + 1) = r%id(:, e)
-          r%val(:, e + 1) = r%val(:, e)
-          e = e - 1
-        end do
-        r%id(:, e + 1) = id
-        r%val(:, e + 1) = val
-      end do
-    end do
-  end subroutine send_records
-
-  !> Make a buffer hold at least n elements (grown by doubling, kept).
-  subroutine reserve_i8(a, n)
-    integer(i8), allocatable, intent(inout) :: a(:)
-    integer, intent(in) :: n
-    if (allocated(a)) then
-      if (size(a) >= n) return
-      deallocate(a)
-    end if
-    allocate(a(max(2 * n, 64)))
-  end subroutine reserve_i8
-
-  !> Make a buffer hold at least n elements (grown by doubling, kept).
-  subroutine reserve_real(a, n)
-    real(rk), allocatable, intent(inout) :: a(:)
-    integer, intent(in) :: n
-    if (allocated(a)) then
-      if (size(a) >= n) return
-      deallocate(a)
-    end if
-    allocate(a(max(2 * n, 64)))
-  end subroutine reserve_real
-
-  !> Sums of 3-vector records per (owned node, interface), in key order.
-  subroutine sum_records(r, fck, has)
-    type(records_t), intent(in) :: r
-    real(rk), intent(inout) :: fck(:, :, :)
-    logical, intent(inout) :: has(:, :)
-    integer :: j, i, k
-    do j = 1, r%n
-      i = int(r%id(1, j))
-      k = int(r%id(2, j))
-      fck(:, i, k) = fck(:, i, k) + r%val(:, j)
-      has(i, k) = .true.
-    end do
-  end subroutine sum_records
 
   !> DAM at the owners, first round: the exchanged mass, force and momentum
   !> of the owned nodes summed in key order, then the velocities: free, and
@@ -1034,27 +820,6 @@ contains
     end do
   end subroutine reduce_diagnostics
 
-  !> DAM self-contact: a node is the slave of a segment only from the side
-  !> with the lower segment ids (its lowest segment id below the segment's),
-  !> so each pair of facing sides is matched once, as two surfaces would be
-  !> (both sides as slaves would exchange everything twice).
-  subroutine keep_lower_side(surf, pairs)
-    type(contact_surface_t), intent(in) :: surf
-    integer, allocatable, intent(inout) :: pairs(:, :) !< (2, n) node, segment
-    integer(i8) :: lowest
-    integer :: m, kept, k
-    kept = 0
-    do m = 1, size(pairs, 2)
-      k = surface_node_index(surf, int(pairs(1, m), ik))
-      lowest = minval(surf%segment_id(surf%node_segments(surf%node_start(k): &
-          surf%node_start(k + 1) - 1)))
-      if (.not. lowest < surf%segment_id(pairs(2, m))) cycle
-      kept = kept + 1
-      pairs(:, kept) = pairs(:, m)
-    end do
-    pairs = pairs(:, :kept)
-  end subroutine keep_lower_side
-
   !> Capture tolerance: the deck's, or twice the closing distance of one step.
   pure real(rk) function capture_of(p, speed, dt) result(capture)
     type(interface_t), intent(in) :: p
@@ -1062,24 +827,6 @@ contains
     capture = p%spec%capture
     if (.not. capture > 0.0_rk) capture = max(2.0_rk * speed * dt, 1.0e-3_rk * p%size)
   end function capture_of
-
-  !> Nodal (dual-cell) areas of a surface's nodes, indexed by contact index.
-  subroutine nodal_areas(x, surf, area)
-    real(rk), intent(in) :: x(:, :)
-    type(contact_surface_t), intent(in) :: surf
-    real(rk), intent(inout) :: area(:) !< (ncn), zeroed here on the surface nodes
-    real(rk) :: corner(4)
-    integer :: s, c
-    do s = 1, surf%nseg
-      area(surf%segments(:, s)) = 0.0_rk
-    end do
-    do s = 1, surf%nseg
-      call corner_areas(x(:, surf%segments(:, s)), corner)
-      do c = 1, 4
-        area(surf%segments(c, s)) = area(surf%segments(c, s)) + corner(c)
-      end do
-    end do
-  end subroutine nodal_areas
 
   !> A surface's facets, facet normals and areas, segment normals and nodal
   !> areas at x (once per cycle; every segment pair then reads them).
@@ -1102,38 +849,6 @@ contains
     g%nodal_area = 0.0_rk
     call nodal_areas(x, surf, g%nodal_area)
   end subroutine geometry_update
-
-  !> Bounding box of a segment's corners projected on the plane spanned by
-  !> t1, t2 (its facets' centre and midpoints lie inside it), relative to origin.
-  pure subroutine segment_box(x, corners, origin, t1, t2, box)
-    real(rk), intent(in) :: x(:, :), origin(3), t1(3), t2(3)
-    integer(ik), intent(in) :: corners(4)
-    real(rk), intent(out) :: box(4)
-    real(rk) :: u, w
-    integer :: c
-    box = [huge(1.0_rk), -huge(1.0_rk), huge(1.0_rk), -huge(1.0_rk)]
-    do c = 1, 4
-      u = dot_product(x(:, corners(c)) - origin, t1)
-      w = dot_product(x(:, corners(c)) - origin, t2)
-      box = [min(box(1), u), max(box(2), u), min(box(3), w), max(box(4), w)]
-    end do
-  end subroutine segment_box
-
-  !> A segment's facets projected on the plane spanned by t1, t2 (relative to
-  !> origin) and their bounding boxes.
-  pure subroutine project_facets(facets, origin, t1, t2, f2, box)
-    real(rk), intent(in) :: facets(3, 3, SEGMENT_FACET_COUNT), origin(3), t1(3), t2(3)
-    real(rk), intent(out) :: f2(2, 3, SEGMENT_FACET_COUNT), box(4, SEGMENT_FACET_COUNT)
-    integer :: i, v
-    do i = 1, SEGMENT_FACET_COUNT
-      do v = 1, 3
-        f2(1, v, i) = dot_product(facets(:, v, i) - origin, t1)
-        f2(2, v, i) = dot_product(facets(:, v, i) - origin, t2)
-      end do
-      box(:, i) = [minval(f2(1, :, i)), maxval(f2(1, :, i)), minval(f2(2, :, i)), &
-          maxval(f2(2, :, i))]
-    end do
-  end subroutine project_facets
 
 
   !> DLM geometry at x^n (the same for both stages, so computed once per
@@ -1350,54 +1065,6 @@ contains
     end do
   end subroutine dlm_step
 
-  !> Bounding box (min t1, max t1, min t2, max t2) of a facet projected on the
-  !> plane spanned by t1, t2.
-  pure subroutine facet_box(facet, t1, t2, box)
-    real(rk), intent(in) :: facet(3, 3), t1(3), t2(3)
-    real(rk), intent(out) :: box(4)
-    real(rk) :: u(3), w(3)
-    integer :: k
-    do k = 1, 3
-      u(k) = dot_product(facet(:, k), t1)
-      w(k) = dot_product(facet(:, k), t2)
-    end do
-    box = [minval(u), maxval(u), minval(w), maxval(w)]
-  end subroutine facet_box
-
-  !> Two projected boxes overlap (with a relative margin for round-off; the
-  !> exact clip decides).
-  pure logical function boxes_meet(a, b)
-    real(rk), intent(in) :: a(4), b(4)
-    real(rk) :: pad
-    pad = 1.0e-9_rk * max(a(2) - a(1), a(4) - a(3), b(2) - b(1), b(4) - b(3))
-    boxes_meet = a(1) <= b(2) + pad .and. b(1) <= a(2) + pad .and. a(3) <= b(4) + pad .and. &
-        b(3) <= a(4) + pad
-  end function boxes_meet
-
-  !> The part of a facet's own area that an overlap s0, measured in the plane
-  !> normal to nrm, covers: s0 times the facet's area over its projected area.
-  !> Divided by the nodal area it is the node's share carried by the overlap;
-  !> the shares of a node fully covered sum to one to round-off even when its
-  !> facets are not normal to nrm (a warped or tilted surface), so that a
-  !> matching interface acts exactly on whole nodes.
-  pure real(rk) function covered(facet_normal, s0, nrm) result(area)
-    real(rk), intent(in) :: facet_normal(3), s0, nrm(3)
-    real(rk) :: projected
-    projected = abs(dot_product(facet_normal, nrm))
-    area = s0
-    if (projected > 0.0_rk) area = s0 / projected
-  end function covered
-
-  !> Distance along nrm from point c to the plane through q with normal n
-  !> (c + t nrm lies on the plane).
-  pure real(rk) function plane_offset(q, n, c, nrm) result(t)
-    real(rk), intent(in) :: q(3), n(3), c(3), nrm(3)
-    real(rk) :: denominator
-    denominator = dot_product(nrm, n)
-    t = 0.0_rk
-    if (abs(denominator) > 1.0e-3_rk) t = dot_product(q - c, n) / denominator
-  end function plane_offset
-
   !> DAM geometry at x^n (once per cycle, in the predictor; both stages use
   !> x^n): the primary pairs within the capture distance of a full step, the
   !> facet overlaps of each slave node's facets with the facets of its primary
@@ -1601,47 +1268,6 @@ contains
     end do
     p%partial(1:5) = [real(active, rk), sum_force, pen_max, pen_sq, real(npen, rk)]
   end subroutine dam_put_back
-
-  !> Bilinear shape functions of a segment at natural coordinates (xi, eta).
-  pure subroutine bilinear_shape(xi, eta, shape)
-    real(rk), intent(in) :: xi, eta
-    real(rk), intent(out) :: shape(4)
-    shape(1) = 0.25_rk * (1.0_rk - xi) * (1.0_rk - eta)
-    shape(2) = 0.25_rk * (1.0_rk + xi) * (1.0_rk - eta)
-    shape(3) = 0.25_rk * (1.0_rk + xi) * (1.0_rk + eta)
-    shape(4) = 0.25_rk * (1.0_rk - xi) * (1.0_rk + eta)
-  end subroutine bilinear_shape
-
-  !> A master segment and every segment sharing a node with it, ascending.
-  subroutine master_neighbourhood(surf, s, list, n)
-    type(contact_surface_t), intent(in) :: surf
-    integer, intent(in) :: s
-    integer, intent(out) :: list(:)
-    integer, intent(out) :: n
-    integer :: c, k, e, t, i
-    n = 0
-    do c = 1, 4
-      k = surface_node_index(surf, surf%segments(c, s))
-      do e = surf%node_start(k), surf%node_start(k + 1) - 1
-        t = surf%node_segments(e)
-        if (any(list(:n) == t)) cycle
-        if (n == size(list)) exit
-        n = n + 1
-        list(n) = t
-      end do
-    end do
-    ! ascending
-    do i = 2, n
-      t = list(i)
-      k = i - 1
-      do while (k >= 1)
-        if (list(k) <= t) exit
-        list(k + 1) = list(k)
-        k = k - 1
-      end do
-      list(k + 1) = t
-    end do
-  end subroutine master_neighbourhood
 
   !> After the velocity update: the work of the contact forces over the step
   !> on the owned nodes (local sum; the caller reduces it).

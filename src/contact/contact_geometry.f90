@@ -30,7 +30,7 @@
 !> changes the result only by round-off when both lie in a plane normal to `normal`.
 !> Degenerate input (a zero-area projected triangle, a zero normal) gives zero.
 module contact_geometry
-  use core_kinds, only: rk
+  use core_kinds, only: rk, ik
   use mesh_geometry, only: quad_vector_area
   implicit none
   private
@@ -38,6 +38,8 @@ module contact_geometry
   public :: triangle_vector_area, triangle_unit_normal
   public :: triangle_overlap, triangle_overlap_area, triangle_overlap_2d
   public :: SEGMENT_FACET_COUNT, FACET_CORNER, tangent_basis
+  public :: segment_box, project_facets, facet_box, boxes_meet, covered, plane_offset, &
+      bilinear_shape
 
   !> Number of facets of one segment.
   integer, parameter :: SEGMENT_FACET_COUNT = 8
@@ -312,5 +314,95 @@ contains
       centroid = mean + moment / (3.0_rk * twice_area)
     end if
   end subroutine polygon_area_centroid
+
+  !> Bounding box of a segment's corners projected on the plane spanned by
+  !> t1, t2 (its facets' centre and midpoints lie inside it), relative to origin.
+  pure subroutine segment_box(x, corners, origin, t1, t2, box)
+    real(rk), intent(in) :: x(:, :), origin(3), t1(3), t2(3)
+    integer(ik), intent(in) :: corners(4)
+    real(rk), intent(out) :: box(4)
+    real(rk) :: u, w
+    integer :: c
+    box = [huge(1.0_rk), -huge(1.0_rk), huge(1.0_rk), -huge(1.0_rk)]
+    do c = 1, 4
+      u = dot_product(x(:, corners(c)) - origin, t1)
+      w = dot_product(x(:, corners(c)) - origin, t2)
+      box = [min(box(1), u), max(box(2), u), min(box(3), w), max(box(4), w)]
+    end do
+  end subroutine segment_box
+
+  !> A segment's facets projected on the plane spanned by t1, t2 (relative to
+  !> origin) and their bounding boxes.
+  pure subroutine project_facets(facets, origin, t1, t2, f2, box)
+    real(rk), intent(in) :: facets(3, 3, SEGMENT_FACET_COUNT), origin(3), t1(3), t2(3)
+    real(rk), intent(out) :: f2(2, 3, SEGMENT_FACET_COUNT), box(4, SEGMENT_FACET_COUNT)
+    integer :: i, v
+    do i = 1, SEGMENT_FACET_COUNT
+      do v = 1, 3
+        f2(1, v, i) = dot_product(facets(:, v, i) - origin, t1)
+        f2(2, v, i) = dot_product(facets(:, v, i) - origin, t2)
+      end do
+      box(:, i) = [minval(f2(1, :, i)), maxval(f2(1, :, i)), minval(f2(2, :, i)), &
+          maxval(f2(2, :, i))]
+    end do
+  end subroutine project_facets
+
+  !> Bounding box (min t1, max t1, min t2, max t2) of a facet projected on the
+  !> plane spanned by t1, t2.
+  pure subroutine facet_box(facet, t1, t2, box)
+    real(rk), intent(in) :: facet(3, 3), t1(3), t2(3)
+    real(rk), intent(out) :: box(4)
+    real(rk) :: u(3), w(3)
+    integer :: k
+    do k = 1, 3
+      u(k) = dot_product(facet(:, k), t1)
+      w(k) = dot_product(facet(:, k), t2)
+    end do
+    box = [minval(u), maxval(u), minval(w), maxval(w)]
+  end subroutine facet_box
+
+  !> Two projected boxes overlap (with a relative margin for round-off; the
+  !> exact clip decides).
+  pure logical function boxes_meet(a, b)
+    real(rk), intent(in) :: a(4), b(4)
+    real(rk) :: pad
+    pad = 1.0e-9_rk * max(a(2) - a(1), a(4) - a(3), b(2) - b(1), b(4) - b(3))
+    boxes_meet = a(1) <= b(2) + pad .and. b(1) <= a(2) + pad .and. a(3) <= b(4) + pad .and. &
+        b(3) <= a(4) + pad
+  end function boxes_meet
+
+  !> The part of a facet's own area that an overlap s0, measured in the plane
+  !> normal to nrm, covers: s0 times the facet's area over its projected area.
+  !> Divided by the nodal area it is the node's share carried by the overlap;
+  !> the shares of a node fully covered sum to one to round-off even when its
+  !> facets are not normal to nrm (a warped or tilted surface), so that a
+  !> matching interface acts exactly on whole nodes.
+  pure real(rk) function covered(facet_normal, s0, nrm) result(area)
+    real(rk), intent(in) :: facet_normal(3), s0, nrm(3)
+    real(rk) :: projected
+    projected = abs(dot_product(facet_normal, nrm))
+    area = s0
+    if (projected > 0.0_rk) area = s0 / projected
+  end function covered
+
+  !> Distance along nrm from point c to the plane through q with normal n
+  !> (c + t nrm lies on the plane).
+  pure real(rk) function plane_offset(q, n, c, nrm) result(t)
+    real(rk), intent(in) :: q(3), n(3), c(3), nrm(3)
+    real(rk) :: denominator
+    denominator = dot_product(nrm, n)
+    t = 0.0_rk
+    if (abs(denominator) > 1.0e-3_rk) t = dot_product(q - c, n) / denominator
+  end function plane_offset
+
+  !> Bilinear shape functions of a segment at natural coordinates (xi, eta).
+  pure subroutine bilinear_shape(xi, eta, shape)
+    real(rk), intent(in) :: xi, eta
+    real(rk), intent(out) :: shape(4)
+    shape(1) = 0.25_rk * (1.0_rk - xi) * (1.0_rk - eta)
+    shape(2) = 0.25_rk * (1.0_rk + xi) * (1.0_rk - eta)
+    shape(3) = 0.25_rk * (1.0_rk + xi) * (1.0_rk + eta)
+    shape(4) = 0.25_rk * (1.0_rk - xi) * (1.0_rk + eta)
+  end subroutine bilinear_shape
 
 end module contact_geometry

@@ -21,11 +21,12 @@ module contact_surface
   use core_status, only: status_t
   use mesh_geometry, only: HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
-  use contact_geometry, only: quad_unit_normal
+  use contact_geometry, only: quad_unit_normal, corner_areas
   implicit none
   private
   public :: surface_build, surface_from_segments, surface_update_edges, set_names_of
   public :: surface_node_index, edge_end
+  public :: add_ring, local_surface, master_neighbourhood, keep_lower_side, nodal_areas
 
   !> An edge is convex when sin(angle between the segment normals) exceeds this.
   real(rk), parameter, public :: CONVEX_TOLERANCE = 1.0e-8_rk
@@ -270,5 +271,118 @@ contains
     end do
     i = 0
   end function surface_node_index
+
+  !> Grow a selection of segments by every segment sharing a node with it.
+  subroutine add_ring(surf, mark)
+    type(contact_surface_t), intent(in) :: surf
+    logical, intent(inout) :: mark(:)
+    logical :: grown(size(mark))
+    integer :: s, c, n, e
+    grown = mark
+    do s = 1, surf%nseg
+      if (.not. mark(s)) cycle
+      do c = 1, 4
+        n = surface_node_index(surf, surf%segments(c, s))
+        do e = surf%node_start(n), surf%node_start(n + 1) - 1
+          grown(surf%node_segments(e)) = .true.
+        end do
+      end do
+    end do
+    mark = grown
+  end subroutine add_ring
+
+  !> The selected segments of a whole surface as a local surface (local node
+  !> numbers, the same order, the whole surface's edge flags); seg_of maps a
+  !> whole-surface segment to its local number.
+  subroutine local_surface(all, mark, l_of, xloc, surf, seg_of)
+    type(contact_surface_t), intent(in) :: all
+    logical, intent(in) :: mark(:)
+    integer, intent(in) :: l_of(:)
+    real(rk), intent(in) :: xloc(:, :)
+    type(contact_surface_t), intent(inout) :: surf
+    integer, allocatable, intent(out) :: seg_of(:)
+    integer, allocatable :: list(:)
+    integer(ik), allocatable :: segments(:, :)
+    integer :: s, j
+    list = pack([(s, s = 1, all%nseg)], mark)
+    allocate(segments(4, size(list)), seg_of(all%nseg))
+    seg_of = 0
+    do j = 1, size(list)
+      segments(:, j) = int(l_of(all%segments(:, list(j))), ik)
+      seg_of(list(j)) = j
+    end do
+    call surface_from_segments(segments, all%segment_id(list), xloc, surf)
+    surf%edge_convex = all%edge_convex(:, list)
+  end subroutine local_surface
+
+  !> A master segment and every segment sharing a node with it, ascending.
+  subroutine master_neighbourhood(surf, s, list, n)
+    type(contact_surface_t), intent(in) :: surf
+    integer, intent(in) :: s
+    integer, intent(out) :: list(:)
+    integer, intent(out) :: n
+    integer :: c, k, e, t, i
+    n = 0
+    do c = 1, 4
+      k = surface_node_index(surf, surf%segments(c, s))
+      do e = surf%node_start(k), surf%node_start(k + 1) - 1
+        t = surf%node_segments(e)
+        if (any(list(:n) == t)) cycle
+        if (n == size(list)) exit
+        n = n + 1
+        list(n) = t
+      end do
+    end do
+    ! ascending
+    do i = 2, n
+      t = list(i)
+      k = i - 1
+      do while (k >= 1)
+        if (list(k) <= t) exit
+        list(k + 1) = list(k)
+        k = k - 1
+      end do
+      list(k + 1) = t
+    end do
+  end subroutine master_neighbourhood
+
+  !> DAM self-contact: a node is the slave of a segment only from the side
+  !> with the lower segment ids (its lowest segment id below the segment's),
+  !> so each pair of facing sides is matched once, as two surfaces would be
+  !> (both sides as slaves would exchange everything twice).
+  subroutine keep_lower_side(surf, pairs)
+    type(contact_surface_t), intent(in) :: surf
+    integer, allocatable, intent(inout) :: pairs(:, :) !< (2, n) node, segment
+    integer(i8) :: lowest
+    integer :: m, kept, k
+    kept = 0
+    do m = 1, size(pairs, 2)
+      k = surface_node_index(surf, int(pairs(1, m), ik))
+      lowest = minval(surf%segment_id(surf%node_segments(surf%node_start(k): &
+          surf%node_start(k + 1) - 1)))
+      if (.not. lowest < surf%segment_id(pairs(2, m))) cycle
+      kept = kept + 1
+      pairs(:, kept) = pairs(:, m)
+    end do
+    pairs = pairs(:, :kept)
+  end subroutine keep_lower_side
+
+  !> Nodal (dual-cell) areas of a surface's nodes, indexed by contact index.
+  subroutine nodal_areas(x, surf, area)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    real(rk), intent(inout) :: area(:) !< (ncn), zeroed here on the surface nodes
+    real(rk) :: corner(4)
+    integer :: s, c
+    do s = 1, surf%nseg
+      area(surf%segments(:, s)) = 0.0_rk
+    end do
+    do s = 1, surf%nseg
+      call corner_areas(x(:, surf%segments(:, s)), corner)
+      do c = 1, 4
+        area(surf%segments(c, s)) = area(surf%segments(c, s)) + corner(c)
+      end do
+    end do
+  end subroutine nodal_areas
 
 end module contact_surface
