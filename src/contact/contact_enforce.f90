@@ -84,7 +84,7 @@ module contact_enforce
       master_neighbourhood, keep_lower_side, nodal_areas
   use contact_records, only: records_t, take, add_record, send_records, sum_records
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
-      search_interval, find_key, sort_real
+      search_interval, find_key, sort_real, sort_unique
   use contact_rbf, only: rbf_weights
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
   use parallel_exchange, only: par_exchange, par_exchange_counts
@@ -1361,36 +1361,6 @@ contains
 
   end subroutine contact_report
 
-  !> Sort ascending and drop repeats.
-  subroutine sort_unique(a)
-    integer(i8), allocatable, intent(inout) :: a(:)
-    integer(i8) :: t
-    integer :: i, j, n, gap
-    n = size(a)
-    gap = n / 2
-    do while (gap > 0)
-      do i = gap + 1, n
-        t = a(i)
-        j = i
-        do while (j > gap)
-          if (a(j - gap) <= t) exit
-          a(j) = a(j - gap)
-          j = j - gap
-        end do
-        a(j) = t
-      end do
-      gap = gap / 2
-    end do
-    j = 0
-    do i = 1, n
-      if (j > 0) then
-        if (a(i) == a(j)) cycle
-      end if
-      j = j + 1
-      a(j) = a(i)
-    end do
-    a = a(:j)
-  end subroutine sort_unique
 
 
 

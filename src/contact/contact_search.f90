@@ -54,7 +54,7 @@ module contact_search
   private
   public :: segment_territory, bucket_search, closest_point, contact_kind, primary_pairs
   public :: pair_excluded, search_interval, largest_relative_speed, segment_pair_search
-  public :: find_key, sort_real, sort_by_key
+  public :: find_key, sort_real, sort_by_key, sort_unique
 
   !> No contact.
   integer, parameter, public :: KIND_NONE = 0
@@ -778,5 +778,36 @@ contains
     end do
     k = max(1, k)
   end function search_interval
+
+  !> Sort ascending and drop repeats.
+  subroutine sort_unique(a)
+    integer(i8), allocatable, intent(inout) :: a(:)
+    integer(i8) :: t
+    integer :: i, j, n, gap
+    n = size(a)
+    gap = n / 2
+    do while (gap > 0)
+      do i = gap + 1, n
+        t = a(i)
+        j = i
+        do while (j > gap)
+          if (a(j - gap) <= t) exit
+          a(j) = a(j - gap)
+          j = j - gap
+        end do
+        a(j) = t
+      end do
+      gap = gap / 2
+    end do
+    j = 0
+    do i = 1, n
+      if (j > 0) then
+        if (a(i) == a(j)) cycle
+      end if
+      j = j + 1
+      a(j) = a(i)
+    end do
+    a = a(:j)
+  end subroutine sort_unique
 
 end module contact_search
