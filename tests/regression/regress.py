@@ -775,23 +775,8 @@ def cmd_stopfile(args):
     open(os.path.join(ws, "STOP"), "w").close()
     cmd = [args.mpiexec, "-np", str(args.np), args.exe, "deck.nml"]
     proc = subprocess.run(cmd, cwd=ws, env=ENV, capture_output=True, text=True)
-    check("stopped run exits with code 3", proc.returncode == 3,
-          "got %d: %s" % (proc.returncode, proc.stderr[-2000:]))
-    check("it says why", "stop file" in proc.stdout, proc.stdout[-1000:])
-    stop_dump = final_dump(ws)
-    check("restart dump written", stop_dump is not None and stop_dump != full)
-    if proc.returncode != 3 or stop_dump is None:
-        return
-    wr = os.path.join(args.workdir, "restarted")
-    code, out, err = run(args, args.restart_np, wr, args.deck,
-                         extra=["--restart", os.path.abspath(stop_dump)])
-    check("restarted run exits 0", code == 0, err[-2000:])
-    mine = os.path.join(wr, os.path.basename(full))
-    if os.path.exists(mine):
-        same, diff = h5same(full, mine)
-        check("final dump bitwise identical after the stop and restart", same, diff)
-    else:
-        check("restarted run ends at the same cycle", False, mine)
+    stopped_restart_check(args, args.deck, full, ws, proc.returncode, proc.stdout, proc.stderr,
+                          "stop file")
 
 
 def variant_deck(args):
