@@ -21,14 +21,18 @@
 !> Parallel contact by RCB (DESIGN.md 5, CONTACT.md 5). The mesh partition
 !> does not follow the surfaces, so contact work is decomposed on its own:
 !> * At each global search (every few cycles, when the territory margin may be
-!>   used up) the positions of all contact nodes are summed onto every rank
-!>   (one reduction; the only replicated step), every rank runs the same
-!>   global search, and a recursive coordinate bisection of the contact nodes,
-!>   weighted by the pairs each node keys, assigns every pair to one part
-!>   (rank): a DLM segment pair to the part of its a-segment's first node, a
-!>   DAM test pair to the part of its slave node. A part's local set is the
-!>   segments of its pairs plus the rings of neighbours the geometry reads
-!>   (nodal areas, the DAM master neighbourhood), numbered by global id.
+!>   used up) a recursive coordinate bisection of the owned contact nodes,
+!>   weighted by the pairs each node keyed at the last search, gives every
+!>   rank a part (a region). Pairs belong to the part of their key node: a DLM
+!>   segment pair to the part of its a-segment's first node, a DAM test pair
+!>   to the part of its slave node. The ranks owning the segments' zones send
+!>   the key items to their part and each segment, with its corners, to every
+!>   part its territory (grown, for DLM, by the largest a-segment) may reach;
+!>   each part runs the bucket search on what it received and finds exactly
+!>   its pairs of the whole search (search_on_parts). Nothing is replicated
+!>   but the static surface topology. A part's local set is the segments of
+!>   its pairs plus the rings of neighbours the geometry reads (nodal areas,
+!>   the DAM master neighbourhood), numbered by global id.
 !> * Each stage, mesh owners send x^n, v^n and f of the local sets' nodes to
 !>   the parts (point to point), parts run DLM or DAM on their pairs and send
 !>   back one record per contribution, keyed by (interface, global pair
@@ -80,15 +84,15 @@ module contact_enforce
       FACET_CORNER, tangent_basis, segment_box, project_facets, facet_box, boxes_meet, covered, &
       plane_offset, bilinear_shape
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
-      surface_update_edges, surface_node_index, set_names_of, add_ring, local_surface, &
+      surface_node_index, set_names_of, add_ring, local_surface, &
       master_neighbourhood, keep_lower_side, nodal_areas
   use contact_records, only: records_t, take, add_record, send_records, sum_records
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
-      search_interval, find_key, sort_real, sort_unique
+      search_interval, find_key, sort_real, sort_unique, sort_by_key
   use contact_rbf, only: rbf_weights
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
   use parallel_exchange, only: par_exchange, par_exchange_counts
-  use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of
+  use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of, rcb_parts_of_box
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_diagnostics
@@ -156,6 +160,9 @@ module contact_enforce
     integer, allocatable :: segment_pairs(:, :) !< DLM: (2, n) local segment of a, of b
     integer(i8), allocatable :: pair_key(:) !< DLM: (n) global order of each local segment pair
     integer, allocatable :: test_pairs(:, :) !< DAM: (2, n) local slave node, master segment
+    integer, allocatable :: home_a(:), home_b(:) !< segments of all_a, all_b homed on this rank
+    integer, allocatable :: home_a_node(:, :), home_b_node(:, :) !< (4, n) their local mesh nodes
+    integer, allocatable :: own_slave(:) !< DAM: owned nodes of all_a (surface node index)
     logical, allocatable :: was_active(:) !< (nown) owned node carried contact force last step
     integer :: nfp = 0 !< DLM facet pairs of the cycle
     integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
@@ -177,9 +184,13 @@ module contact_enforce
   !> whole surfaces a part reads (during a rebuild).
   type :: selection_t
     integer, allocatable :: pairs(:, :) !< (2, n) DLM: segments a, b; DAM: node, segment
-    integer, allocatable :: owned_index(:) !< global order of this part's pairs
     logical, allocatable :: mark_a(:), mark_b(:) !< (nseg) segment in the local set
   end type selection_t
+
+  !> A list of integers (one per interface).
+  type :: int_list_t
+    integer, allocatable :: v(:)
+  end type int_list_t
 
   !> All contact of a run.
   type, public :: contact_t
@@ -195,6 +206,10 @@ module contact_enforce
     integer, allocatable :: own_contact(:) !< (nown) contact index, ascending
     integer, allocatable :: own_local(:) !< (nown) local mesh node index
     integer, allocatable :: own_of(:) !< (nall) owned index of a contact node, 0 if not owned
+    logical, allocatable :: key_capable(:) !< (nown) the node can key pairs (DLM first
+                                           !< corner of an a-segment, DAM slave node)
+    integer(i8), allocatable :: key_weight(:) !< (nown) RCB weight: pairs keyed at the last search
+    real(rk), allocatable :: xs(:, :) !< (3, nall) positions the part's search received
     real(rk), allocatable :: fc(:, :) !< (3, nown) contact force of the stage
     ! This rank's RCB part.
     integer :: ncn = 0 !< nodes of the local set
@@ -325,6 +340,7 @@ contains
     ct%all_owner = nint(packed(2, :))
     allocate(ct%fc(3, ct%nown))
     ct%fc = 0.0_rk
+    call segment_homes(ct, mesh)
     do k = 1, ct%npair
       allocate(ct%pairs(k)%was_active(ct%nown))
       ct%pairs(k)%was_active = .false.
@@ -347,6 +363,73 @@ contains
     end subroutine renumber
 
   end subroutine contact_setup
+
+  !> The segments each rank homes: those of its owned zones, whose four
+  !> corners it holds (owned or ghost nodes; ghosts move exactly as their
+  !> owners). Also the owned nodes that can key pairs, the first RCB weights.
+  subroutine segment_homes(ct, mesh)
+    type(contact_t), intent(inout) :: ct
+    type(mesh_t), intent(in) :: mesh
+    integer(i8), allocatable :: zone_key(:)
+    integer, allocatable :: perm(:)
+    integer :: k, i, n, s
+
+    zone_key = mesh%zone_gid(:mesh%nzone_owned)
+    call sort_by_key(zone_key, perm)
+    zone_key = zone_key(perm)
+    allocate(ct%key_capable(ct%nown))
+    ct%key_capable = .false.
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        call homes_of(p%all_a, p%home_a, p%home_a_node)
+        call homes_of(p%all_b, p%home_b, p%home_b_node)
+        if (p%method == METHOD_DLM) then
+          do s = 1, p%all_a%nseg
+            i = ct%own_of(p%all_a%segments(1, s))
+            if (i > 0) ct%key_capable(i) = .true.
+          end do
+          allocate(p%own_slave(0))
+        else
+          p%own_slave = pack([(n, n = 1, p%all_a%nnode)], ct%own_of(p%all_a%nodes) > 0)
+          do n = 1, size(p%own_slave)
+            ct%key_capable(ct%own_of(p%all_a%nodes(p%own_slave(n)))) = .true.
+          end do
+        end if
+      end associate
+    end do
+    ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
+    ! Filled by each search with what the part receives, read nowhere else.
+    allocate(ct%xs(3, ct%nall))
+
+  contains
+
+    subroutine homes_of(surf, home, node)
+      type(contact_surface_t), intent(in) :: surf
+      integer, allocatable, intent(out) :: home(:), node(:, :)
+      integer :: j, z, c, m, count
+      allocate(home(surf%nseg), node(4, surf%nseg))
+      count = 0
+      do j = 1, surf%nseg
+        ! segment_id = 6 (zone - 1) + face
+        z = find_key(zone_key, (surf%segment_id(j) - 1_i8) / 6_i8 + 1_i8)
+        if (z == 0) cycle
+        z = perm(z)
+        count = count + 1
+        home(count) = j
+        do c = 1, 4
+          m = 1
+          do while (mesh%node_gid(mesh%zone_node(m, z)) /= ct%all_gid(surf%segments(c, j)))
+            m = m + 1
+            if (m > 8) error stop 'contact: a segment corner is not a node of its zone'
+          end do
+          node(c, count) = mesh%zone_node(m, z)
+        end do
+      end do
+      home = home(:count)
+      node = node(:, :count)
+    end subroutine homes_of
+
+  end subroutine segment_homes
 
   !> Median of the longest segment edge over a surface.
   function median_size(x, surf) result(h)
@@ -389,8 +472,9 @@ contains
     real(rk), allocatable :: fck(:, :, :), vmatch(:, :, :), vm_local(:, :, :)
     logical, allocatable :: has(:, :), touched(:, :)
     real(rk) :: t0, speed
+    type(selection_t), allocatable :: sel(:)
     integer :: i, k
-    logical :: any_dam
+    logical :: any_dam, rebuilt
 
     if (ct%npair == 0) return
     t0 = wall_clock()
@@ -399,11 +483,15 @@ contains
       speed = max(speed, norm2(v_old(:, ct%own_local(i))))
     end do
     ct%speed = par_max(speed)
-    if (cycle >= ct%next_search .or. .not. allocated(ct%all_of)) &
-        call contact_rebuild(ct, x_old, dt, cycle)
+    rebuilt = cycle >= ct%next_search .or. .not. allocated(ct%all_of)
+    if (rebuilt) call contact_rebuild(ct, x_old, dt, cycle, sel)
     call lap(ct%search_seconds)
     call gather_nodes(ct, x_old, v_old, force)
     call lap(ct%migrate_seconds)
+    if (rebuilt) then
+      call contact_localize(ct, sel)
+      call lap(ct%search_seconds)
+    end if
 
     ! The parts: DLM pair forces, DAM exchange over the overlaps.
     call take(ct%kept(1), dlm_out, 3)
@@ -467,36 +555,22 @@ contains
 
   end subroutine contact_apply
 
-  !> Global search of every interface, RCB of the contact nodes, this part's
-  !> pairs and local set, and the migration plan. Collective.
-  subroutine contact_rebuild(ct, x_old, dt, cycle)
+  !> Search of every interface on the RCB parts, this part's pairs and local
+  !> set, and the migration plan (the local surfaces follow in
+  !> contact_localize, once the local set's positions have arrived). Collective.
+  subroutine contact_rebuild(ct, x_old, dt, cycle, sel)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x_old(:, :), dt
     integer(i8), intent(in) :: cycle
-    real(rk), allocatable :: flat(:), xall(:, :), xloc(:, :)
-    integer(i8), allocatable :: weight(:), request(:), wanted(:)
-    integer, allocatable :: l_of(:), seg_a(:), seg_b(:), fill(:)
-    logical, allocatable :: in_set(:), owned(:)
+    type(selection_t), allocatable, intent(out) :: sel(:)
+    integer(i8), allocatable :: request(:), wanted(:)
+    integer, allocatable :: fill(:)
+    logical, allocatable :: in_set(:)
     type(rcb_t) :: rcb
-    type(selection_t), allocatable :: sel(:)
-    integer :: k, i, c, m, n, every, every_min, me, nranks, r, s, e, j
+    integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j
 
     nranks = par_size()
-    me = par_rank()
     ct%rebuilds = ct%rebuilds + 1
-    ! Positions of all contact nodes on every rank (the one replicated step).
-    allocate(flat(3 * ct%nall))
-    flat = 0.0_rk
-    do i = 1, ct%nown
-      c = ct%own_contact(i)
-      flat(3 * c - 2:3 * c) = x_old(:, ct%own_local(i))
-    end do
-    call par_sum_array(flat)
-    xall = reshape(flat, [3, ct%nall])
-    deallocate(flat)
-
-    ! Global search, the same on every rank.
-    allocate(sel(ct%npair))
     every_min = huge(1)
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
@@ -506,50 +580,28 @@ contains
         if (every == 0) every = search_interval(p%margin, capture_of(p, 2.0_rk * ct%speed, dt), &
             2.0_rk * ct%speed, dt, 1.2_rk, 50)
         every_min = min(every_min, every)
-        call surface_update_edges(p%all_b, xall)
-        if (p%self) call surface_update_edges(p%all_a, xall)
-        if (p%method == METHOD_DLM) then
-          call segment_pair_search(xall, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs)
-        else
-          call bucket_search(xall, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs)
-          if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs)
-        end if
       end associate
     end do
     ct%next_search = cycle + int(every_min, i8)
 
-    ! RCB of the contact nodes, weighted by the pairs they key.
-    allocate(weight(ct%nall))
-    weight = 0
-    do k = 1, ct%npair
-      do m = 1, size(sel(k)%pairs, 2)
-        c = key_node(ct%pairs(k), sel(k)%pairs(:, m))
-        weight(c) = weight(c) + 1
-      end do
-    end do
-    call rcb_build(xall(:, ct%own_contact), weight(ct%own_contact), ct%all_gid(ct%own_contact), &
+    ! RCB of the owned contact nodes, weighted by the pairs each keyed at the
+    ! last search (the search of the parts needs the parts first).
+    call rcb_build(x_old(:, ct%own_local), ct%key_weight, ct%all_gid(ct%own_contact), &
         nranks, rcb)
+    allocate(sel(ct%npair))
+    call search_on_parts(ct, x_old, rcb, sel)
+    call count_keys(ct, sel)
 
-    ! This part's pairs and the segments their geometry reads.
+    ! The segments this part's pairs read.
     allocate(in_set(ct%nall))
     in_set = .false.
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        allocate(owned(size(sel(k)%pairs, 2)), sel(k)%mark_a(p%all_a%nseg), &
-            sel(k)%mark_b(p%all_b%nseg))
-        do m = 1, size(sel(k)%pairs, 2)
-          if (p%single_part) then
-            owned(m) = me == 0
-          else
-            c = key_node(p, sel(k)%pairs(:, m))
-            owned(m) = rcb_part_of(rcb, xall(:, c), ct%all_gid(c)) == me
-          end if
-        end do
+        allocate(sel(k)%mark_a(p%all_a%nseg), sel(k)%mark_b(p%all_b%nseg))
         sel(k)%mark_a = .false.
         sel(k)%mark_b = .false.
         if (p%method == METHOD_DLM) then
           do m = 1, size(sel(k)%pairs, 2)
-            if (.not. owned(m)) cycle
             sel(k)%mark_a(sel(k)%pairs(1, m)) = .true.
             sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
           end do
@@ -558,7 +610,6 @@ contains
           call add_ring(p%all_b, sel(k)%mark_b)
         else
           do m = 1, size(sel(k)%pairs, 2)
-            if (.not. owned(m)) cycle
             n = surface_node_index(p%all_a, int(sel(k)%pairs(1, m), ik))
             do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
               sel(k)%mark_a(p%all_a%node_segments(e)) = .true.
@@ -569,9 +620,6 @@ contains
           call add_ring(p%all_b, sel(k)%mark_b)
           call add_ring(p%all_b, sel(k)%mark_b)
         end if
-        sel(k)%owned_index = pack([(m, m = 1, size(owned))], owned)
-        sel(k)%pairs = sel(k)%pairs(:, sel(k)%owned_index)
-        deallocate(owned)
         do s = 1, p%all_a%nseg
           if (sel(k)%mark_a(s)) in_set(p%all_a%segments(:, s)) = .true.
         end do
@@ -585,35 +633,9 @@ contains
     ct%all_of = pack([(c, c = 1, ct%nall)], in_set)
     ct%ncn = size(ct%all_of)
     ct%ncn_max = max(ct%ncn_max, ct%ncn)
-    allocate(l_of(ct%nall))
-    l_of = 0
-    do i = 1, ct%ncn
-      l_of(ct%all_of(i)) = i
-    end do
-    xloc = xall(:, ct%all_of)
     ct%mass = ct%all_mass(ct%all_of)
     if (allocated(ct%x)) deallocate(ct%x, ct%v, ct%f)
     allocate(ct%x(3, ct%ncn), ct%v(3, ct%ncn), ct%f(3, ct%ncn))
-    do k = 1, ct%npair
-      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
-        call local_surface(p%all_a, sel(k)%mark_a, l_of, xloc, p%a, seg_a)
-        call local_surface(p%all_b, sel(k)%mark_b, l_of, xloc, p%b, seg_b)
-        if (p%method == METHOD_DLM) then
-          p%segment_pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
-              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
-          p%pair_key = int(sel(k)%owned_index, i8)
-        else
-          p%test_pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
-              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
-        end if
-        call geometry_free(p%ga)
-        call geometry_free(p%gb)
-        if (allocated(p%primary)) deallocate(p%primary)
-        if (allocated(p%enforced)) deallocate(p%enforced)
-        allocate(p%enforced(ct%ncn))
-        p%enforced = .false.
-      end associate
-    end do
 
     ! Migration plan: each owner learns which of its nodes each part needs.
     allocate(fill(nranks))
@@ -645,6 +667,254 @@ contains
       ct%send_own(j) = ct%own_of(wanted(j))
     end do
   end subroutine contact_rebuild
+
+  !> The local surfaces and pair lists of this part from the local set's
+  !> positions x^n (just gathered); edge flags from the same positions.
+  subroutine contact_localize(ct, sel)
+    type(contact_t), intent(inout) :: ct
+    type(selection_t), intent(in) :: sel(:)
+    integer, allocatable :: l_of(:), seg_a(:), seg_b(:)
+    integer :: k, i, m
+
+    allocate(l_of(ct%nall))
+    l_of = 0
+    do i = 1, ct%ncn
+      l_of(ct%all_of(i)) = i
+    end do
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
+        call local_surface(p%all_a, sel(k)%mark_a, l_of, ct%x, p%a, seg_a)
+        call local_surface(p%all_b, sel(k)%mark_b, l_of, ct%x, p%b, seg_b)
+        if (p%method == METHOD_DLM) then
+          p%segment_pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
+              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+          ! The global order of a segment pair: the search lists them by (a, b).
+          p%pair_key = [(int(pairs(1, m) - 1, i8) * int(p%all_b%nseg, i8) + &
+              int(pairs(2, m), i8), m = 1, size(pairs, 2))]
+        else
+          p%test_pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
+              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+        end if
+        call geometry_free(p%ga)
+        call geometry_free(p%gb)
+        if (allocated(p%primary)) deallocate(p%primary)
+        if (allocated(p%enforced)) deallocate(p%enforced)
+        allocate(p%enforced(ct%ncn))
+        p%enforced = .false.
+      end associate
+    end do
+  end subroutine contact_localize
+
+  !> The global search, on the parts. Segment homes (the ranks owning the
+  !> segments' zones) send each segment with its corner positions x^n to the
+  !> parts it may reach; a part searches its keys (DLM: the a-segments whose
+  !> first node is in its region; DAM: the slave nodes in its region) against
+  !> the segments received. A DAM pair (n, b) needs n inside b's territory, so
+  !> b goes to every part whose region meets the territory; a DLM pair (a, b)
+  !> needs a's box to meet b's territory, and a's box lies within the largest
+  !> a-segment extent of its first node, so b goes to the parts its territory
+  !> grown by that extent meets. Each part finds exactly its pairs of the
+  !> whole search, in the same order. Collective.
+  subroutine search_on_parts(ct, x_old, rcb, sel)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x_old(:, :)
+    type(rcb_t), intent(in) :: rcb
+    type(selection_t), intent(inout) :: sel(:)
+    !> A shipped item: interface, kind, index, four corners (a node: one).
+    integer, parameter :: REC = 15
+    integer, parameter :: KEY_SEGMENT = 1, CANDIDATE = 2, KEY_NODE = 3
+    real(rk), allocatable :: send(:), recv(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), parts(:), nlist(:, :)
+    type(int_list_t), allocatable :: keys(:), cands(:)
+    real(rk) :: ext(ct%npair), lo(3), hi(3), grow, slack, corners(3, 4)
+    integer :: k, j, s, i, n, part, np, pass, nranks, q, kind, idx
+
+    nranks = par_size()
+    allocate(count(nranks), recv_count(nranks), fill(nranks), parts(nranks))
+    ! The largest a-segment extent of each DLM interface.
+    do k = 1, ct%npair
+      ext(k) = 0.0_rk
+      associate(p => ct%pairs(k))
+        if (p%method == METHOD_DLM) then
+          do j = 1, size(p%home_a)
+            corners = x_old(:, p%home_a_node(:, j))
+            ext(k) = max(ext(k), maxval(maxval(corners, dim=2) - minval(corners, dim=2)))
+          end do
+        end if
+      end associate
+      ext(k) = par_max(ext(k))
+    end do
+
+    ! Two passes over the items: count per part, then fill.
+    do pass = 1, 2
+      if (pass == 1) then
+        count = 0
+      else
+        allocate(send(REC * sum(count)))
+        fill(1) = 0
+        do part = 2, nranks
+          fill(part) = fill(part - 1) + count(part - 1)
+        end do
+      end if
+      do k = 1, ct%npair
+        associate(p => ct%pairs(k))
+          if (p%method == METHOD_DLM) then
+            do j = 1, size(p%home_a)
+              s = p%home_a(j)
+              part = 0
+              if (.not. p%single_part) part = rcb_part_of(rcb, x_old(:, p%home_a_node(1, j)), &
+                  ct%all_gid(p%all_a%segments(1, s)))
+              call emit(part, k, KEY_SEGMENT, s, x_old(:, p%home_a_node(:, j)))
+            end do
+            grow = p%margin + ext(k)
+          else
+            do j = 1, size(p%own_slave)
+              i = ct%own_of(p%all_a%nodes(p%own_slave(j)))
+              corners = 0.0_rk
+              corners(:, 1) = x_old(:, ct%own_local(i))
+              part = rcb_part_of(rcb, corners(:, 1), ct%all_gid(ct%own_contact(i)))
+              call emit(part, k, KEY_NODE, p%own_slave(j), corners)
+            end do
+            grow = p%margin
+          end if
+          do j = 1, size(p%home_b)
+            corners = x_old(:, p%home_b_node(:, j))
+            if (p%single_part) then
+              call emit(0, k, CANDIDATE, p%home_b(j), corners)
+              cycle
+            end if
+            ! Conservative by a few roundings: more candidates change nothing.
+            slack = 1.0e-10_rk * (grow + maxval(abs(corners)))
+            lo = minval(corners, dim=2) - grow - slack
+            hi = maxval(corners, dim=2) + grow + slack
+            call rcb_parts_of_box(rcb, lo, hi, parts, np)
+            do q = 1, np
+              call emit(parts(q), k, CANDIDATE, p%home_b(j), corners)
+            end do
+          end do
+        end associate
+      end do
+    end do
+    call par_exchange_counts(REC * count, recv_count)
+    call par_exchange(send, REC * count, recv, recv_count)
+
+    ! Keys and candidates of each interface, ascending; their positions.
+    allocate(nlist(2, ct%npair), keys(ct%npair), cands(ct%npair))
+    nlist = 0
+    n = sum(recv_count) / REC
+    do pass = 1, 2
+      do j = 1, n
+        k = nint(recv(REC * (j - 1) + 1))
+        kind = nint(recv(REC * (j - 1) + 2))
+        idx = nint(recv(REC * (j - 1) + 3))
+        q = merge(2, 1, kind == CANDIDATE)
+        nlist(q, k) = nlist(q, k) + 1
+        if (pass == 1) cycle
+        corners = reshape(recv(REC * (j - 1) + 4:REC * j), [3, 4])
+        associate(p => ct%pairs(k))
+          select case (kind)
+          case (KEY_SEGMENT)
+            keys(k)%v(nlist(1, k)) = idx
+            ct%xs(:, p%all_a%segments(:, idx)) = corners
+          case (KEY_NODE)
+            keys(k)%v(nlist(1, k)) = idx
+            ct%xs(:, p%all_a%nodes(idx)) = corners(:, 1)
+          case default
+            cands(k)%v(nlist(2, k)) = idx
+            ct%xs(:, p%all_b%segments(:, idx)) = corners
+          end select
+        end associate
+      end do
+      if (pass == 1) then
+        do k = 1, ct%npair
+          allocate(keys(k)%v(nlist(1, k)), cands(k)%v(nlist(2, k)))
+        end do
+        nlist = 0
+      end if
+    end do
+
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        call sort_int(keys(k)%v)
+        call sort_int(cands(k)%v)
+        if (p%method == METHOD_DLM) then
+          call segment_pair_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
+              keys(k)%v, cands(k)%v)
+        else
+          call bucket_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
+              keys(k)%v, cands(k)%v)
+          if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs)
+        end if
+      end associate
+    end do
+
+  contains
+
+    subroutine emit(to, k, kind, idx, corners)
+      integer, intent(in) :: to, k, kind, idx
+      real(rk), intent(in) :: corners(3, 4)
+      integer :: at
+      if (pass == 1) then
+        count(to + 1) = count(to + 1) + 1
+        return
+      end if
+      fill(to + 1) = fill(to + 1) + 1
+      at = REC * (fill(to + 1) - 1)
+      send(at + 1:at + 3) = real([k, kind, idx], rk)
+      send(at + 4:at + REC) = reshape(corners, [12])
+    end subroutine emit
+
+  end subroutine search_on_parts
+
+  !> Ascending sort of a short integer list (via the 64-bit merge sort).
+  subroutine sort_int(v)
+    integer, intent(inout) :: v(:)
+    integer, allocatable :: perm(:)
+    call sort_by_key(int(v, i8), perm)
+    v = v(perm)
+  end subroutine sort_int
+
+  !> Weights of the next RCB: each owned node's pairs keyed at this search
+  !> (counted at the owners), plus one for a node that can key pairs.
+  subroutine count_keys(ct, sel)
+    type(contact_t), intent(inout) :: ct
+    type(selection_t), intent(in) :: sel(:)
+    integer(i8), allocatable :: send(:), recv(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:)
+    integer :: k, m, c, pass, nranks, r, j
+    nranks = par_size()
+    allocate(count(nranks), recv_count(nranks), fill(nranks))
+    do pass = 1, 2
+      if (pass == 1) then
+        count = 0
+      else
+        allocate(send(sum(count)))
+        fill(1) = 0
+        do r = 2, nranks
+          fill(r) = fill(r - 1) + count(r - 1)
+        end do
+      end if
+      do k = 1, ct%npair
+        do m = 1, size(sel(k)%pairs, 2)
+          c = key_node(ct%pairs(k), sel(k)%pairs(:, m))
+          r = ct%all_owner(c) + 1
+          if (pass == 1) then
+            count(r) = count(r) + 1
+          else
+            fill(r) = fill(r) + 1
+            send(fill(r)) = int(c, i8)
+          end if
+        end do
+      end do
+    end do
+    call par_exchange_counts(count, recv_count)
+    call par_exchange(send, count, recv, recv_count)
+    ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
+    do j = 1, sum(recv_count)
+      m = ct%own_of(recv(j))
+      ct%key_weight(m) = ct%key_weight(m) + 1_i8
+    end do
+  end subroutine count_keys
 
   !> The contact node that decides the part of a pair: DLM, the first corner
   !> of its a-segment; DAM, its slave node.

@@ -95,7 +95,7 @@ module contact_search
   !> Bucket grid of segment territories: sorted cell keys with a CSR into the
   !> segments (see the module notes).
   type :: bucket_grid_t
-    real(rk), allocatable :: lo(:, :), hi(:, :) !< (3, nseg) territories
+    real(rk), allocatable :: lo(:, :), hi(:, :) !< (3, n) territories of the bucketed segments
     real(rk) :: h = 0.0_rk, origin(3) = 0.0_rk, top(3) = 0.0_rk
     integer(i8) :: ncell(3) = 1
     integer(i8), allocatable :: bucket_key(:)
@@ -131,27 +131,37 @@ contains
 
   !> Global search: test pairs (slave node, master segment) with the node inside
   !> the segment's territory, sorted by (node global id, segment index).
-  subroutine bucket_search(x, slave, master, self_contact, margin, pairs)
+  !> keys and candidates restrict the search to a subset (an RCB part's slave
+  !> nodes, as surface node indices, and the master segments that may reach
+  !> them, both ascending); the pairs found among them are exactly those of the
+  !> whole search, in the same order.
+  subroutine bucket_search(x, slave, master, self_contact, margin, pairs, keys, candidates)
     real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
     type(contact_surface_t), intent(in) :: slave !< surface whose nodes search
     type(contact_surface_t), intent(in) :: master !< surface whose segments are found
     logical, intent(in) :: self_contact !< slave and master are the same surface
     real(rk), intent(in) :: margin !< territory growth, >= 0
     integer, allocatable, intent(out) :: pairs(:, :) !< (2, npair): node id, segment
+    integer, intent(in), optional :: keys(:) !< slave surface nodes to search (default all)
+    integer, intent(in), optional :: candidates(:) !< master segments (default all)
     type(bucket_grid_t) :: grid
     integer(ik), allocatable :: ring(:)
+    integer, allocatable :: list(:), nodes(:)
     real(rk) :: p(3)
     integer(i8) :: cell(3), key
-    integer :: s, n, b, e, npair, node, nring
+    integer :: s, n, b, e, npair, node, nring, j, m
 
     npair = 0
     allocate(pairs(2, 0))
-    if (master%nseg == 0 .or. slave%nnode == 0) return
-    call build_buckets(x, master, margin, grid)
+    call subset(master%nseg, list, candidates)
+    call subset(slave%nnode, nodes, keys)
+    if (size(list) == 0 .or. size(nodes) == 0) return
+    call build_buckets(x, master, list, margin, grid)
 
     ! Each slave node looks in its own bucket.
     allocate(ring(4 * maxval(slave%node_start(2:) - slave%node_start(:slave%nnode))))
-    do n = 1, slave%nnode
+    do m = 1, size(nodes)
+      n = nodes(m)
       node = slave%nodes(n)
       p = x(:, node)
       if (any(p < grid%origin) .or. any(p > grid%top)) cycle
@@ -161,8 +171,9 @@ contains
       if (b == 0) cycle
       call node_ring(slave, n, self_contact, ring, nring)
       do e = grid%bucket_start(b), grid%bucket_start(b + 1) - 1
-        s = grid%bucket_segment(e)
-        if (any(p < grid%lo(:, s)) .or. any(p > grid%hi(:, s))) cycle
+        j = grid%bucket_segment(e)
+        s = list(j)
+        if (any(p < grid%lo(:, j)) .or. any(p > grid%hi(:, j))) cycle
         if (pair_excluded(master%segments(:, s), ring(:nring))) cycle
         call append_pair(pairs, npair, node, s)
       end do
@@ -174,25 +185,33 @@ contains
   !> surf_b, with a's bounding box overlapping b's territory (grown by margin).
   !> Sorted by (a, b). In self-contact (the same surface twice) each pair is
   !> listed once, a < b, and segments sharing a node are never paired.
-  subroutine segment_pair_search(x, surf_a, surf_b, self_contact, margin, pairs)
+  !> keys (segments of a) and candidates (segments of b), both ascending,
+  !> restrict the search to a subset, as in bucket_search.
+  subroutine segment_pair_search(x, surf_a, surf_b, self_contact, margin, pairs, keys, &
+      candidates)
     real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
     type(contact_surface_t), intent(in) :: surf_a, surf_b
     logical, intent(in) :: self_contact
     real(rk), intent(in) :: margin !< territory growth of surf_b's segments, >= 0
     integer, allocatable, intent(out) :: pairs(:, :) !< (2, npair): segment of a, of b
+    integer, intent(in), optional :: keys(:) !< segments of a to search (default all)
+    integer, intent(in), optional :: candidates(:) !< segments of b (default all)
     type(bucket_grid_t) :: grid
-    integer, allocatable :: mark(:)
+    integer, allocatable :: mark(:), list(:), segs(:)
     real(rk) :: lo(3), hi(3)
     integer(i8) :: cell_lo(3), cell_hi(3), i, j, k, key
-    integer :: sa, sb, b, e, npair, first, m, swap
+    integer :: sa, sb, b, e, npair, first, m, swap, jb, ma
 
     npair = 0
     allocate(pairs(2, 0))
-    if (surf_a%nseg == 0 .or. surf_b%nseg == 0) return
-    call build_buckets(x, surf_b, margin, grid)
-    allocate(mark(surf_b%nseg))
+    call subset(surf_b%nseg, list, candidates)
+    call subset(surf_a%nseg, segs, keys)
+    if (size(list) == 0 .or. size(segs) == 0) return
+    call build_buckets(x, surf_b, list, margin, grid)
+    allocate(mark(size(list)))
     mark = 0
-    do sa = 1, surf_a%nseg
+    do ma = 1, size(segs)
+      sa = segs(ma)
       call segment_territory(x(:, surf_a%segments(:, sa)), 0.0_rk, lo, hi)
       if (any(hi < grid%origin) .or. any(lo > grid%top)) cycle
       first = npair + 1
@@ -205,10 +224,11 @@ contains
             b = find_key(grid%bucket_key, key)
             if (b == 0) cycle
             do e = grid%bucket_start(b), grid%bucket_start(b + 1) - 1
-              sb = grid%bucket_segment(e)
-              if (mark(sb) == sa) cycle
-              mark(sb) = sa
-              if (any(hi < grid%lo(:, sb)) .or. any(lo > grid%hi(:, sb))) cycle
+              jb = grid%bucket_segment(e)
+              if (mark(jb) == sa) cycle
+              mark(jb) = sa
+              sb = list(jb)
+              if (any(hi < grid%lo(:, jb)) .or. any(lo > grid%hi(:, jb))) cycle
               if (self_contact) then
                 if (sb <= sa) cycle
                 if (pair_excluded(surf_b%segments(:, sb), surf_a%segments(:, sa))) cycle
@@ -233,10 +253,25 @@ contains
     pairs = pairs(:, :npair)
   end subroutine segment_pair_search
 
+  !> The given subset, or 1..n when absent.
+  pure subroutine subset(n, list, given)
+    integer, intent(in) :: n
+    integer, allocatable, intent(out) :: list(:)
+    integer, intent(in), optional :: given(:)
+    integer :: i
+    if (present(given)) then
+      list = given
+    else
+      list = [(i, i = 1, n)]
+    end if
+  end subroutine subset
+
   !> Buckets of the territories of the master segments (see the module notes).
-  subroutine build_buckets(x, master, margin, g)
+  !> Entries refer to positions in list (the segments bucketed).
+  subroutine build_buckets(x, master, list, margin, g)
     real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
     type(contact_surface_t), intent(in) :: master
+    integer, intent(in) :: list(:) !< the master segments to bucket
     real(rk), intent(in) :: margin !< territory growth, >= 0
     type(bucket_grid_t), intent(out) :: g
     real(rk), allocatable :: sizes(:)
@@ -244,10 +279,10 @@ contains
     integer, allocatable :: entry_segment(:), perm(:)
     integer(i8) :: cell_lo(3), cell_hi(3), nentry, i, j, k
     integer :: nseg, s, nbucket, m
-    nseg = master%nseg
+    nseg = size(list)
     allocate(g%lo(3, nseg), g%hi(3, nseg), sizes(nseg))
     do s = 1, nseg
-      call segment_territory(x(:, master%segments(:, s)), margin, g%lo(:, s), g%hi(:, s))
+      call segment_territory(x(:, master%segments(:, list(s))), margin, g%lo(:, s), g%hi(:, s))
       sizes(s) = maxval(g%hi(:, s) - g%lo(:, s))
     end do
     call sort_real(sizes)

@@ -292,8 +292,9 @@ contains
   end subroutine add_ring
 
   !> The selected segments of a whole surface as a local surface (local node
-  !> numbers, the same order, the whole surface's edge flags); seg_of maps a
-  !> whole-surface segment to its local number.
+  !> numbers, the same order; edge flags from xloc, the same as the whole
+  !> surface's for every segment whose neighbours are all selected); seg_of
+  !> maps a whole-surface segment to its local number.
   subroutine local_surface(all, mark, l_of, xloc, surf, seg_of)
     type(contact_surface_t), intent(in) :: all
     logical, intent(in) :: mark(:)
@@ -312,7 +313,6 @@ contains
       seg_of(list(j)) = j
     end do
     call surface_from_segments(segments, all%segment_id(list), xloc, surf)
-    surf%edge_convex = all%edge_convex(:, list)
   end subroutine local_surface
 
   !> A master segment and every segment sharing a node with it, ascending.
