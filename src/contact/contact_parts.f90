@@ -1,0 +1,526 @@
+!> Contact on RCB parts (DESIGN.md 5, CONTACT.md 5): the global search run
+!> on the parts, each part's local set, and the migration of node data
+!> between the mesh owners and the parts. contact_enforce calls these; the
+!> contributions of the parts go back to the owners as ordered records
+!> (contact_records).
+!>
+!> Parallel contact by RCB (DESIGN.md 5, CONTACT.md 5). The mesh partition
+!> does not follow the surfaces, so contact work is decomposed on its own:
+!> * At each global search (every few cycles, when the territory margin may be
+!>   used up) a recursive coordinate bisection of the owned contact nodes,
+!>   weighted by the pairs each node keyed at the last search, gives every
+!>   rank a part (a region). Pairs belong to the part of their key node: a DLM
+!>   segment pair to the part of its a-segment's first node, a DAM test pair
+!>   to the part of its slave node. The ranks owning the segments' zones send
+!>   the key items to their part and each segment, with its corners, to every
+!>   part its territory (grown, for DLM, by the largest a-segment) may reach;
+!>   each part runs the bucket search on what it received and finds exactly
+!>   its pairs of the whole search (search_on_parts). Nothing is replicated
+!>   but the static surface topology. A part's local set is the segments of
+!>   its pairs plus the rings of neighbours the geometry reads (nodal areas,
+!>   the DAM master neighbourhood), numbered by global id.
+!> * Each stage, mesh owners send x^n, v^n and f of the local sets' nodes to
+!>   the parts (point to point), parts run DLM or DAM on their pairs and send
+!>   back one record per contribution, keyed by (interface, global pair
+!>   order); owners sum the records in key order, which is the order of a
+!>   one-rank run, so results are bitwise independent of the rank count.
+!>   DAM needs a second round: the owners' matched master velocities go back
+!>   to the parts for the put-back-on of the slaves.
+!> * DLM with sweeps > 1 (Gauss-Seidel over all pairs) is sequential: every
+!>   pair of such an interface goes to part 0, which sends node sums.
+!> Nodes far from any pair belong to no local set and cost nothing.
+module contact_parts
+  use core_kinds, only: rk, ik, i8
+  use mesh_local, only: mesh_t
+  use contact_surface, only: contact_surface_t, surface_node_index, add_ring, local_surface, &
+      keep_lower_side
+  use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key, &
+      sort_by_key
+  use contact_state, only: contact_t, selection_t, int_list_t, METHOD_DLM, capture_of, &
+      key_node, geometry_free
+  use parallel_env, only: par_max, par_size
+  use parallel_exchange, only: par_exchange, par_exchange_counts
+  use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of, rcb_parts_of_box
+  implicit none
+  private
+  public :: segment_homes, contact_rebuild, contact_localize, gather_nodes, scatter_nodes
+
+contains
+
+  !> The segments each rank homes: those of its owned zones, whose four
+  !> corners it holds (owned or ghost nodes; ghosts move exactly as their
+  !> owners). Also the owned nodes that can key pairs, the first RCB weights.
+  subroutine segment_homes(ct, mesh)
+    type(contact_t), intent(inout) :: ct
+    type(mesh_t), intent(in) :: mesh
+    integer(i8), allocatable :: zone_key(:)
+    integer, allocatable :: perm(:)
+    integer :: k, i, n, s
+
+    zone_key = mesh%zone_gid(:mesh%nzone_owned)
+    call sort_by_key(zone_key, perm)
+    zone_key = zone_key(perm)
+    allocate(ct%key_capable(ct%nown))
+    ct%key_capable = .false.
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        call homes_of(p%all_a, p%home_a, p%home_a_node)
+        call homes_of(p%all_b, p%home_b, p%home_b_node)
+        if (p%method == METHOD_DLM) then
+          do s = 1, p%all_a%nseg
+            i = ct%own_of(p%all_a%segments(1, s))
+            if (i > 0) ct%key_capable(i) = .true.
+          end do
+          allocate(p%own_slave(0))
+        else
+          p%own_slave = pack([(n, n = 1, p%all_a%nnode)], ct%own_of(p%all_a%nodes) > 0)
+          do n = 1, size(p%own_slave)
+            ct%key_capable(ct%own_of(p%all_a%nodes(p%own_slave(n)))) = .true.
+          end do
+        end if
+      end associate
+    end do
+    ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
+    ! Filled by each search with what the part receives, read nowhere else.
+    allocate(ct%xs(3, ct%nall))
+
+  contains
+
+    subroutine homes_of(surf, home, node)
+      type(contact_surface_t), intent(in) :: surf
+      integer, allocatable, intent(out) :: home(:), node(:, :)
+      integer :: j, z, c, m, count
+      allocate(home(surf%nseg), node(4, surf%nseg))
+      count = 0
+      do j = 1, surf%nseg
+        ! segment_id = 6 (zone - 1) + face
+        z = find_key(zone_key, (surf%segment_id(j) - 1_i8) / 6_i8 + 1_i8)
+        if (z == 0) cycle
+        z = perm(z)
+        count = count + 1
+        home(count) = j
+        do c = 1, 4
+          m = 1
+          do while (mesh%node_gid(mesh%zone_node(m, z)) /= ct%all_gid(surf%segments(c, j)))
+            m = m + 1
+            if (m > 8) error stop 'contact: a segment corner is not a node of its zone'
+          end do
+          node(c, count) = mesh%zone_node(m, z)
+        end do
+      end do
+      home = home(:count)
+      node = node(:, :count)
+    end subroutine homes_of
+
+  end subroutine segment_homes
+
+
+  !> Search of every interface on the RCB parts, this part's pairs and local
+  !> set, and the migration plan (the local surfaces follow in
+  !> contact_localize, once the local set's positions have arrived). Collective.
+  subroutine contact_rebuild(ct, x_old, dt, cycle, sel)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x_old(:, :), dt
+    integer(i8), intent(in) :: cycle
+    type(selection_t), allocatable, intent(out) :: sel(:)
+    integer(i8), allocatable :: request(:), wanted(:)
+    integer, allocatable :: fill(:)
+    logical, allocatable :: in_set(:)
+    type(rcb_t) :: rcb
+    integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j
+
+    nranks = par_size()
+    ct%rebuilds = ct%rebuilds + 1
+    every_min = huge(1)
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        p%margin = p%spec%search_margin
+        if (.not. p%margin > 0.0_rk) p%margin = 0.5_rk * p%size
+        every = p%spec%search_every
+        if (every == 0) every = search_interval(p%margin, capture_of(p, 2.0_rk * ct%speed, dt), &
+            2.0_rk * ct%speed, dt, 1.2_rk, 50)
+        every_min = min(every_min, every)
+      end associate
+    end do
+    ct%next_search = cycle + int(every_min, i8)
+
+    ! RCB of the owned contact nodes, weighted by the pairs each keyed at the
+    ! last search (the search of the parts needs the parts first).
+    call rcb_build(x_old(:, ct%own_local), ct%key_weight, ct%all_gid(ct%own_contact), &
+        nranks, rcb)
+    allocate(sel(ct%npair))
+    call search_on_parts(ct, x_old, rcb, sel)
+    call count_keys(ct, sel)
+
+    ! The segments this part's pairs read.
+    allocate(in_set(ct%nall))
+    in_set = .false.
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        allocate(sel(k)%mark_a(p%all_a%nseg), sel(k)%mark_b(p%all_b%nseg))
+        sel(k)%mark_a = .false.
+        sel(k)%mark_b = .false.
+        if (p%method == METHOD_DLM) then
+          do m = 1, size(sel(k)%pairs, 2)
+            sel(k)%mark_a(sel(k)%pairs(1, m)) = .true.
+            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
+          end do
+          ! Nodal areas need every segment of every node.
+          call add_ring(p%all_a, sel(k)%mark_a)
+          call add_ring(p%all_b, sel(k)%mark_b)
+        else
+          do m = 1, size(sel(k)%pairs, 2)
+            n = surface_node_index(p%all_a, int(sel(k)%pairs(1, m), ik))
+            do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
+              sel(k)%mark_a(p%all_a%node_segments(e)) = .true.
+            end do
+            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
+          end do
+          ! The master neighbourhood, and the nodal areas of its nodes.
+          call add_ring(p%all_b, sel(k)%mark_b)
+          call add_ring(p%all_b, sel(k)%mark_b)
+        end if
+        do s = 1, p%all_a%nseg
+          if (sel(k)%mark_a(s)) in_set(p%all_a%segments(:, s)) = .true.
+        end do
+        do s = 1, p%all_b%nseg
+          if (sel(k)%mark_b(s)) in_set(p%all_b%segments(:, s)) = .true.
+        end do
+      end associate
+    end do
+
+    ! The local set, by ascending global id.
+    ct%all_of = pack([(c, c = 1, ct%nall)], in_set)
+    ct%ncn = size(ct%all_of)
+    ct%ncn_max = max(ct%ncn_max, ct%ncn)
+    ct%mass = ct%all_mass(ct%all_of)
+    if (allocated(ct%x)) deallocate(ct%x, ct%v, ct%f)
+    allocate(ct%x(3, ct%ncn), ct%v(3, ct%ncn), ct%f(3, ct%ncn))
+
+    ! Migration plan: each owner learns which of its nodes each part needs.
+    allocate(fill(nranks))
+    if (allocated(ct%recv_count)) deallocate(ct%recv_count, ct%send_count)
+    allocate(ct%recv_count(nranks), ct%send_count(nranks))
+    ct%recv_count = 0
+    do i = 1, ct%ncn
+      r = ct%all_owner(ct%all_of(i))
+      ct%recv_count(r + 1) = ct%recv_count(r + 1) + 1
+    end do
+    fill(1) = 0
+    do r = 2, nranks
+      fill(r) = fill(r - 1) + ct%recv_count(r - 1)
+    end do
+    if (allocated(ct%recv_local)) deallocate(ct%recv_local)
+    allocate(ct%recv_local(ct%ncn), request(ct%ncn))
+    do i = 1, ct%ncn
+      r = ct%all_owner(ct%all_of(i)) + 1
+      fill(r) = fill(r) + 1
+      ct%recv_local(fill(r)) = i
+      request(fill(r)) = int(ct%all_of(i), i8)
+    end do
+    call par_exchange_counts(ct%recv_count, ct%send_count)
+    call par_exchange(request, ct%recv_count, wanted, ct%send_count)
+    if (allocated(ct%send_own)) deallocate(ct%send_own)
+    ! (The receive buffer may be longer than what arrived.)
+    allocate(ct%send_own(sum(ct%send_count)))
+    do j = 1, size(ct%send_own)
+      ct%send_own(j) = ct%own_of(wanted(j))
+    end do
+  end subroutine contact_rebuild
+
+  !> The local surfaces and pair lists of this part from the local set's
+  !> positions x^n (just gathered); edge flags from the same positions.
+  subroutine contact_localize(ct, sel)
+    type(contact_t), intent(inout) :: ct
+    type(selection_t), intent(in) :: sel(:)
+    integer, allocatable :: l_of(:), seg_a(:), seg_b(:)
+    integer :: k, i, m
+
+    allocate(l_of(ct%nall))
+    l_of = 0
+    do i = 1, ct%ncn
+      l_of(ct%all_of(i)) = i
+    end do
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
+        call local_surface(p%all_a, sel(k)%mark_a, l_of, ct%x, p%a, seg_a)
+        call local_surface(p%all_b, sel(k)%mark_b, l_of, ct%x, p%b, seg_b)
+        if (p%method == METHOD_DLM) then
+          p%segment_pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
+              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+          ! The global order of a segment pair: the search lists them by (a, b).
+          p%pair_key = [(int(pairs(1, m) - 1, i8) * int(p%all_b%nseg, i8) + &
+              int(pairs(2, m), i8), m = 1, size(pairs, 2))]
+        else
+          p%test_pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
+              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+        end if
+        call geometry_free(p%ga)
+        call geometry_free(p%gb)
+        if (allocated(p%primary)) deallocate(p%primary)
+        if (allocated(p%enforced)) deallocate(p%enforced)
+        allocate(p%enforced(ct%ncn))
+        p%enforced = .false.
+      end associate
+    end do
+  end subroutine contact_localize
+
+  !> The global search, on the parts. Segment homes (the ranks owning the
+  !> segments' zones) send each segment with its corner positions x^n to the
+  !> parts it may reach; a part searches its keys (DLM: the a-segments whose
+  !> first node is in its region; DAM: the slave nodes in its region) against
+  !> the segments received. A DAM pair (n, b) needs n inside b's territory, so
+  !> b goes to every part whose region meets the territory; a DLM pair (a, b)
+  !> needs a's box to meet b's territory, and a's box lies within the largest
+  !> a-segment extent of its first node, so b goes to the parts its territory
+  !> grown by that extent meets. Each part finds exactly its pairs of the
+  !> whole search, in the same order. Collective.
+  subroutine search_on_parts(ct, x_old, rcb, sel)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x_old(:, :)
+    type(rcb_t), intent(in) :: rcb
+    type(selection_t), intent(inout) :: sel(:)
+    !> A shipped item: interface, kind, index, four corners (a node: one).
+    integer, parameter :: REC = 15
+    integer, parameter :: KEY_SEGMENT = 1, CANDIDATE = 2, KEY_NODE = 3
+    real(rk), allocatable :: send(:), recv(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), parts(:), nlist(:, :)
+    type(int_list_t), allocatable :: keys(:), cands(:)
+    real(rk) :: ext(ct%npair), lo(3), hi(3), grow, slack, corners(3, 4)
+    integer :: k, j, s, i, n, part, np, pass, nranks, q, kind, idx
+
+    nranks = par_size()
+    allocate(count(nranks), recv_count(nranks), fill(nranks), parts(nranks))
+    ! The largest a-segment extent of each DLM interface.
+    do k = 1, ct%npair
+      ext(k) = 0.0_rk
+      associate(p => ct%pairs(k))
+        if (p%method == METHOD_DLM) then
+          do j = 1, size(p%home_a)
+            corners = x_old(:, p%home_a_node(:, j))
+            ext(k) = max(ext(k), maxval(maxval(corners, dim=2) - minval(corners, dim=2)))
+          end do
+        end if
+      end associate
+      ext(k) = par_max(ext(k))
+    end do
+
+    ! Two passes over the items: count per part, then fill.
+    do pass = 1, 2
+      if (pass == 1) then
+        count = 0
+      else
+        allocate(send(REC * sum(count)))
+        fill(1) = 0
+        do part = 2, nranks
+          fill(part) = fill(part - 1) + count(part - 1)
+        end do
+      end if
+      do k = 1, ct%npair
+        associate(p => ct%pairs(k))
+          if (p%method == METHOD_DLM) then
+            do j = 1, size(p%home_a)
+              s = p%home_a(j)
+              part = 0
+              if (.not. p%single_part) part = rcb_part_of(rcb, x_old(:, p%home_a_node(1, j)), &
+                  ct%all_gid(p%all_a%segments(1, s)))
+              call emit(part, k, KEY_SEGMENT, s, x_old(:, p%home_a_node(:, j)))
+            end do
+            grow = p%margin + ext(k)
+          else
+            do j = 1, size(p%own_slave)
+              i = ct%own_of(p%all_a%nodes(p%own_slave(j)))
+              corners = 0.0_rk
+              corners(:, 1) = x_old(:, ct%own_local(i))
+              part = rcb_part_of(rcb, corners(:, 1), ct%all_gid(ct%own_contact(i)))
+              call emit(part, k, KEY_NODE, p%own_slave(j), corners)
+            end do
+            grow = p%margin
+          end if
+          do j = 1, size(p%home_b)
+            corners = x_old(:, p%home_b_node(:, j))
+            if (p%single_part) then
+              call emit(0, k, CANDIDATE, p%home_b(j), corners)
+              cycle
+            end if
+            ! Conservative by a few roundings: more candidates change nothing.
+            slack = 1.0e-10_rk * (grow + maxval(abs(corners)))
+            lo = minval(corners, dim=2) - grow - slack
+            hi = maxval(corners, dim=2) + grow + slack
+            call rcb_parts_of_box(rcb, lo, hi, parts, np)
+            do q = 1, np
+              call emit(parts(q), k, CANDIDATE, p%home_b(j), corners)
+            end do
+          end do
+        end associate
+      end do
+    end do
+    call par_exchange_counts(REC * count, recv_count)
+    call par_exchange(send, REC * count, recv, recv_count)
+
+    ! Keys and candidates of each interface, ascending; their positions.
+    allocate(nlist(2, ct%npair), keys(ct%npair), cands(ct%npair))
+    nlist = 0
+    n = sum(recv_count) / REC
+    do pass = 1, 2
+      do j = 1, n
+        k = nint(recv(REC * (j - 1) + 1))
+        kind = nint(recv(REC * (j - 1) + 2))
+        idx = nint(recv(REC * (j - 1) + 3))
+        q = merge(2, 1, kind == CANDIDATE)
+        nlist(q, k) = nlist(q, k) + 1
+        if (pass == 1) cycle
+        corners = reshape(recv(REC * (j - 1) + 4:REC * j), [3, 4])
+        associate(p => ct%pairs(k))
+          select case (kind)
+          case (KEY_SEGMENT)
+            keys(k)%v(nlist(1, k)) = idx
+            ct%xs(:, p%all_a%segments(:, idx)) = corners
+          case (KEY_NODE)
+            keys(k)%v(nlist(1, k)) = idx
+            ct%xs(:, p%all_a%nodes(idx)) = corners(:, 1)
+          case default
+            cands(k)%v(nlist(2, k)) = idx
+            ct%xs(:, p%all_b%segments(:, idx)) = corners
+          end select
+        end associate
+      end do
+      if (pass == 1) then
+        do k = 1, ct%npair
+          allocate(keys(k)%v(nlist(1, k)), cands(k)%v(nlist(2, k)))
+        end do
+        nlist = 0
+      end if
+    end do
+
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        call sort_int(keys(k)%v)
+        call sort_int(cands(k)%v)
+        if (p%method == METHOD_DLM) then
+          call segment_pair_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
+              keys(k)%v, cands(k)%v)
+        else
+          call bucket_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
+              keys(k)%v, cands(k)%v)
+          if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs)
+        end if
+      end associate
+    end do
+
+  contains
+
+    subroutine emit(to, k, kind, idx, corners)
+      integer, intent(in) :: to, k, kind, idx
+      real(rk), intent(in) :: corners(3, 4)
+      integer :: at
+      if (pass == 1) then
+        count(to + 1) = count(to + 1) + 1
+        return
+      end if
+      fill(to + 1) = fill(to + 1) + 1
+      at = REC * (fill(to + 1) - 1)
+      send(at + 1:at + 3) = real([k, kind, idx], rk)
+      send(at + 4:at + REC) = reshape(corners, [12])
+    end subroutine emit
+
+  end subroutine search_on_parts
+
+  !> Ascending sort of a short integer list (via the 64-bit merge sort).
+  subroutine sort_int(v)
+    integer, intent(inout) :: v(:)
+    integer, allocatable :: perm(:)
+    call sort_by_key(int(v, i8), perm)
+    v = v(perm)
+  end subroutine sort_int
+
+  !> Weights of the next RCB: each owned node's pairs keyed at this search
+  !> (counted at the owners), plus one for a node that can key pairs.
+  subroutine count_keys(ct, sel)
+    type(contact_t), intent(inout) :: ct
+    type(selection_t), intent(in) :: sel(:)
+    integer(i8), allocatable :: send(:), recv(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:)
+    integer :: k, m, c, pass, nranks, r, j
+    nranks = par_size()
+    allocate(count(nranks), recv_count(nranks), fill(nranks))
+    do pass = 1, 2
+      if (pass == 1) then
+        count = 0
+      else
+        allocate(send(sum(count)))
+        fill(1) = 0
+        do r = 2, nranks
+          fill(r) = fill(r - 1) + count(r - 1)
+        end do
+      end if
+      do k = 1, ct%npair
+        do m = 1, size(sel(k)%pairs, 2)
+          c = key_node(ct%pairs(k), sel(k)%pairs(:, m))
+          r = ct%all_owner(c) + 1
+          if (pass == 1) then
+            count(r) = count(r) + 1
+          else
+            fill(r) = fill(r) + 1
+            send(fill(r)) = int(c, i8)
+          end if
+        end do
+      end do
+    end do
+    call par_exchange_counts(count, recv_count)
+    call par_exchange(send, count, recv, recv_count)
+    ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
+    do j = 1, sum(recv_count)
+      m = ct%own_of(recv(j))
+      ct%key_weight(m) = ct%key_weight(m) + 1_i8
+    end do
+  end subroutine count_keys
+
+
+  !> x^n, v^n and f of the local set from the mesh owners.
+  subroutine gather_nodes(ct, x_old, v_old, force)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x_old(:, :), v_old(:, :), force(:, :)
+    real(rk), allocatable :: send(:), recv(:)
+    integer :: j, l, i
+    allocate(send(9 * size(ct%send_own)))
+    do j = 1, size(ct%send_own)
+      l = ct%own_local(ct%send_own(j))
+      send(9 * j - 8:9 * j - 6) = x_old(:, l)
+      send(9 * j - 5:9 * j - 3) = v_old(:, l)
+      send(9 * j - 2:9 * j) = force(:, l)
+    end do
+    call par_exchange(send, 9 * ct%send_count, recv, 9 * ct%recv_count)
+    do j = 1, ct%ncn
+      i = ct%recv_local(j)
+      ct%x(:, i) = recv(9 * j - 8:9 * j - 6)
+      ct%v(:, i) = recv(9 * j - 5:9 * j - 3)
+      ct%f(:, i) = recv(9 * j - 2:9 * j)
+    end do
+  end subroutine gather_nodes
+
+  !> Owned values (3, nown, npair) to the local sets (3, ncn, npair).
+  subroutine scatter_nodes(ct, owned, local)
+    type(contact_t), intent(in) :: ct
+    real(rk), intent(in) :: owned(:, :, :)
+    real(rk), allocatable, intent(out) :: local(:, :, :)
+    real(rk), allocatable :: send(:), recv(:)
+    integer :: j, nv, k, i
+    nv = 3 * ct%npair
+    allocate(send(nv * size(ct%send_own)), local(3, ct%ncn, ct%npair))
+    do j = 1, size(ct%send_own)
+      do k = 1, ct%npair
+        send(nv * (j - 1) + 3 * k - 2:nv * (j - 1) + 3 * k) = owned(:, ct%send_own(j), k)
+      end do
+    end do
+    call par_exchange(send, nv * ct%send_count, recv, nv * ct%recv_count)
+    do j = 1, ct%ncn
+      i = ct%recv_local(j)
+      do k = 1, ct%npair
+        local(:, i, k) = recv(nv * (j - 1) + 3 * k - 2:nv * (j - 1) + 3 * k)
+      end do
+    end do
+  end subroutine scatter_nodes
+
+
+end module contact_parts

@@ -1,0 +1,171 @@
+!> Contact state: the deck's contact groups, the interfaces (whole surfaces,
+!> this part's local surfaces and pairs, per-cycle geometry caches) and the
+!> contact of a run (contact index space, owned nodes, the RCB part's local
+!> set and migration plan). Shared by contact_parts (search on the RCB parts,
+!> migration) and contact_enforce (DAM, DLM). No MPI, no I/O.
+module contact_state
+  use core_kinds, only: rk, ik, i8
+  use mesh_global, only: NAME_LEN
+  use contact_surface, only: contact_surface_t
+  use contact_records, only: records_t
+  use contact_search, only: primary_pair_t
+  implicit none
+  private
+  public :: capture_of, key_node, geometry_free
+
+  integer, parameter, public :: METHOD_DAM = 1, METHOD_DLM = 2
+  integer, parameter, public :: FORM_COORDINATE = 1, FORM_VELOCITY = 2, FORM_COMBINED = 3
+  !> Diagnostic columns per contact pair.
+  !> active: enforced pairs (DLM facet pairs, DAM slave nodes); force: total
+  !> normal force; pen_max, pen_rms: largest and RMS penetration at t^n;
+  !> released: nodes in contact last step and not now; dmom: momentum the
+  !> contact forces added over the step (zero to round-off for DLM).
+  integer, parameter, public :: CONTACT_DIAG_COUNT = 8
+  character(len=*), parameter, public :: CONTACT_DIAG_NAMES(CONTACT_DIAG_COUNT) = [ &
+      character(len=12) :: 'active', 'force', 'pen_max', 'pen_rms', 'released', &
+      'dmom_x', 'dmom_y', 'dmom_z']
+
+  !> Length of a contact surface's list of face-set names.
+  integer, parameter, public :: SURFACE_LEN = 256
+
+  !> One &contact group as read from the deck.
+  type, public :: contact_spec_t
+    character(len=NAME_LEN) :: name = ''
+    character(len=SURFACE_LEN) :: surface_a = '' !< face sets (names, blank or comma separated)
+    character(len=SURFACE_LEN) :: surface_b = '' !< face sets (= surface_a: self-contact)
+    character(len=8) :: method = '' !< 'dam' or 'dlm'
+    character(len=1) :: master = 'b' !< DAM master side
+    character(len=12) :: form = 'velocity' !< DLM: coordinate, velocity, combined
+    real(rk) :: capture = 0.0_rk !< largest open gap treated as contact (0 = automatic)
+    real(rk) :: penetration_warning = huge(1.0_rk) !< warn above this penetration
+    real(rk) :: search_margin = 0.0_rk !< territory margin (0 = automatic)
+    integer :: search_every = 0 !< cycles between global searches (0 = automatic)
+    integer :: sweeps = 1 !< DLM: Gauss-Seidel sweeps of the pair forces (1 = one pass)
+  end type contact_spec_t
+
+  !> Geometry of one surface at x^n, computed once per cycle (in the
+  !> predictor; both stages use x^n) and shared by every segment pair.
+  type, public :: surface_geometry_t
+    real(rk), allocatable :: facets(:, :, :, :) !< (3, 3, SEGMENT_FACET_COUNT, nseg)
+    real(rk), allocatable :: normal(:, :, :) !< (3, SEGMENT_FACET_COUNT, nseg) facet unit normals
+    real(rk), allocatable :: area(:, :) !< (SEGMENT_FACET_COUNT, nseg) facet areas
+    real(rk), allocatable :: quad_normal(:, :) !< (3, nseg) segment unit normals
+    real(rk), allocatable :: nodal_area(:) !< (ncn) dual-cell areas of the surface's nodes
+  end type surface_geometry_t
+
+  !> One contact pair (interface).
+  type, public :: interface_t
+    type(contact_spec_t), public :: spec
+    integer :: method = METHOD_DLM
+    integer :: form = FORM_VELOCITY
+    logical :: self = .false.
+    logical :: single_part = .false. !< every pair on part 0 (DLM sweeps > 1)
+    type(contact_surface_t) :: all_a, all_b !< whole surfaces, contact index (b = master for DAM)
+    type(contact_surface_t) :: a, b !< this part's local surfaces, local index
+    real(rk) :: size = 0.0_rk !< median segment size of both surfaces
+    real(rk) :: margin = 0.0_rk !< territory margin in use
+    integer, allocatable :: segment_pairs(:, :) !< DLM: (2, n) local segment of a, of b
+    integer(i8), allocatable :: pair_key(:) !< DLM: (n) global order of each local segment pair
+    integer, allocatable :: test_pairs(:, :) !< DAM: (2, n) local slave node, master segment
+    integer, allocatable :: home_a(:), home_b(:) !< segments of all_a, all_b homed on this rank
+    integer, allocatable :: home_a_node(:, :), home_b_node(:, :) !< (4, n) their local mesh nodes
+    integer, allocatable :: own_slave(:) !< DAM: owned nodes of all_a (surface node index)
+    logical, allocatable :: was_active(:) !< (nown) owned node carried contact force last step
+    integer :: nfp = 0 !< DLM facet pairs of the cycle
+    integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
+    integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
+    real(rk), allocatable :: fp_real(:, :) !< (7, nfp) shares wh, wd, pen, s0, normal
+    type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
+    type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
+    real(rk), allocatable :: rbf(:, :) !< DAM: (4, nprimary) put-back weights
+    integer, allocatable :: ex_start(:) !< DAM: (nprimary + 1) exchange entries of a pair
+    integer, allocatable :: ex_master(:) !< DAM: master node of an exchange entry
+    real(rk), allocatable :: ex_real(:, :) !< DAM: (3, nex) shares wm, ws and overlap s0
+    logical, allocatable :: enforced(:) !< DAM: (ncn) local slave enforced this stage
+    real(rk) :: partial(CONTACT_DIAG_COUNT) = 0.0_rk !< this part's diagnostic sums
+    real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
+    logical, public :: warned = .false. !< the penetration warning was given
+  end type interface_t
+
+  !> One interface's pairs from the global search, and the segments of the
+  !> whole surfaces a part reads (during a rebuild).
+  type, public :: selection_t
+    integer, allocatable :: pairs(:, :) !< (2, n) DLM: segments a, b; DAM: node, segment
+    logical, allocatable :: mark_a(:), mark_b(:) !< (nseg) segment in the local set
+  end type selection_t
+
+  !> A list of integers (one per interface).
+  type, public :: int_list_t
+    integer, allocatable :: v(:)
+  end type int_list_t
+
+  !> All contact of a run.
+  type, public :: contact_t
+    integer :: npair = 0
+    type(interface_t), allocatable :: pairs(:)
+    ! Every contact node (static, on every rank).
+    integer :: nall = 0 !< contact nodes of all surfaces
+    integer(i8), allocatable :: all_gid(:) !< (nall) global ids, ascending
+    real(rk), allocatable :: all_mass(:) !< (nall) nodal masses (fixed)
+    integer, allocatable :: all_owner(:) !< (nall) rank owning the node in the mesh
+    ! Owned contact nodes of this rank.
+    integer :: nown = 0
+    integer, allocatable :: own_contact(:) !< (nown) contact index, ascending
+    integer, allocatable :: own_local(:) !< (nown) local mesh node index
+    integer, allocatable :: own_of(:) !< (nall) owned index of a contact node, 0 if not owned
+    logical, allocatable :: key_capable(:) !< (nown) the node can key pairs (DLM first
+                                           !< corner of an a-segment, DAM slave node)
+    integer(i8), allocatable :: key_weight(:) !< (nown) RCB weight: pairs keyed at the last search
+    real(rk), allocatable :: xs(:, :) !< (3, nall) positions the part's search received
+    real(rk), allocatable :: fc(:, :) !< (3, nown) contact force of the stage
+    ! This rank's RCB part.
+    integer :: ncn = 0 !< nodes of the local set
+    integer, allocatable :: all_of(:) !< (ncn) their contact index, ascending
+    real(rk), allocatable :: mass(:) !< (ncn)
+    real(rk), allocatable :: x(:, :), v(:, :), f(:, :) !< (3, ncn) x^n, v^n, f of the stage
+    ! Migration plan (rebuilt with the RCB).
+    integer, allocatable :: recv_count(:) !< (nranks) local nodes sent by each owner
+    integer, allocatable :: recv_local(:) !< (ncn) local node of each, by owner
+    integer, allocatable :: send_count(:) !< (nranks) owned nodes sent to each part
+    integer, allocatable :: send_own(:) !< owned index of each, by part
+    integer(i8) :: next_search = 0 !< cycle of the next global search and RCB
+    real(rk) :: speed = 0.0_rk !< largest contact node speed at t^n (all ranks)
+    integer :: rebuilds = 0 !< global searches (RCB rebuilds) so far
+    integer :: ncn_max = 0 !< largest local set of this rank so far
+    real(rk) :: search_seconds = 0.0_rk, enforce_seconds = 0.0_rk, migrate_seconds = 0.0_rk
+    type(records_t) :: kept(3) !< record buffers (DLM, DAM exchange, DAM put-back) between stages
+  end type contact_t
+
+
+contains
+
+  !> Capture tolerance: the deck's, or twice the closing distance of one step.
+  pure real(rk) function capture_of(p, speed, dt) result(capture)
+    type(interface_t), intent(in) :: p
+    real(rk), intent(in) :: speed, dt
+    capture = p%spec%capture
+    if (.not. capture > 0.0_rk) capture = max(2.0_rk * speed * dt, 1.0e-3_rk * p%size)
+  end function capture_of
+
+
+  !> The contact node that decides the part of a pair: DLM, the first corner
+  !> of its a-segment; DAM, its slave node.
+  pure integer function key_node(p, pair) result(c)
+    type(interface_t), intent(in) :: p
+    integer, intent(in) :: pair(2)
+    if (p%method == METHOD_DLM) then
+      c = p%all_a%segments(1, pair(1))
+    else
+      c = pair(1)
+    end if
+  end function key_node
+
+
+  !> Forget a surface's cached geometry (its size changes with the local set).
+  subroutine geometry_free(g)
+    type(surface_geometry_t), intent(inout) :: g
+    if (allocated(g%facets)) deallocate(g%facets, g%normal, g%area, g%quad_normal, g%nodal_area)
+  end subroutine geometry_free
+
+
+end module contact_state
