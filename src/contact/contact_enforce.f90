@@ -969,6 +969,10 @@ contains
     write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'impact3d: contact local sets ', smallest, &
         ' to ', largest, ' nodes per rank of ', ct%nall, ' contact nodes; ', ct%rebuilds, &
         ' global searches'
+    if (ct%balanced_searches > 0) write(output_unit, '(a,f6.3,a,f6.3,a,i0,a,i0,a)') &
+        'impact3d: contact pairs per part, largest / mean: ', &
+        ct%balance_sum / real(ct%balanced_searches, rk), ' on average, ', ct%balance_worst, &
+        ' at worst; ', ct%recuts, ' of ', ct%rebuilds, ' searches re-cut the RCB (load drift)'
     write(output_unit, '(a,f10.3,a,f10.3,a)') 'impact3d: contact memory per rank ', &
         local / 1.0e6_rk, ' MB working set (largest), ', whole / 1.0e6_rk, &
         ' MB whole-surface topology (every rank)'

@@ -38,12 +38,16 @@ module contact_parts
       sort_by_key
   use contact_state, only: contact_t, selection_t, int_list_t, METHOD_DLM, capture_of, &
       key_node, geometry_free
-  use parallel_env, only: par_max, par_size
+  use parallel_env, only: par_max, par_size, par_sum
   use parallel_exchange, only: par_exchange, par_exchange_counts
   use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of, rcb_parts_of_box
   implicit none
   private
   public :: segment_homes, contact_rebuild, contact_localize, gather_nodes, scatter_nodes
+
+  !> The RCB is cut again at a search whose pairs put more than this times
+  !> the mean on one part (when there are at least 16 pairs per part).
+  real(rk), parameter :: REBALANCE = 1.2_rk
 
 contains
 
@@ -127,7 +131,8 @@ contains
     integer, allocatable :: fill(:)
     logical, allocatable :: in_set(:)
     type(rcb_t) :: rcb
-    integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j
+    integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j, pass, mine, total
+    real(rk) :: balance
 
     nranks = par_size()
     ct%rebuilds = ct%rebuilds + 1
@@ -145,12 +150,33 @@ contains
     ct%next_search = cycle + int(every_min, i8)
 
     ! RCB of the owned contact nodes, weighted by the pairs each keyed at the
-    ! last search (the search of the parts needs the parts first).
-    call rcb_build(x_old(:, ct%own_local), ct%key_weight, ct%all_gid(ct%own_contact), &
-        nranks, rcb)
-    allocate(sel(ct%npair))
-    call search_on_parts(ct, x_old, rcb, sel)
-    call count_keys(ct, sel)
+    ! last search (the search of the parts needs the parts first). When the
+    ! pairs found are spread worse than REBALANCE (largest part over the mean:
+    ! the load drifted since the last search, e.g. contact began), the RCB is
+    ! cut again with the fresh counts and the search repeated on the new parts.
+    do pass = 1, 2
+      call rcb_build(x_old(:, ct%own_local), ct%key_weight, ct%all_gid(ct%own_contact), &
+          nranks, rcb)
+      if (allocated(sel)) deallocate(sel)
+      allocate(sel(ct%npair))
+      call search_on_parts(ct, x_old, rcb, sel)
+      call count_keys(ct, sel)
+      mine = 0
+      do k = 1, ct%npair
+        mine = mine + size(sel(k)%pairs, 2)
+      end do
+      total = par_sum(mine)
+      balance = 1.0_rk
+      if (total > 0) balance = real(par_max(mine), rk) * real(nranks, rk) / real(total, rk)
+      ! (A few pairs cost little however they fall.)
+      if (pass == 2 .or. .not. balance > REBALANCE .or. total < 16 * nranks) exit
+      ct%recuts = ct%recuts + 1
+    end do
+    if (total > 0) then
+      ct%balance_sum = ct%balance_sum + balance
+      ct%balance_worst = max(ct%balance_worst, balance)
+      ct%balanced_searches = ct%balanced_searches + 1
+    end if
 
     ! The segments this part's pairs read.
     allocate(in_set(ct%nall))
@@ -435,7 +461,10 @@ contains
   end subroutine sort_int
 
   !> Weights of the next RCB: each owned node's pairs keyed at this search
-  !> (counted at the owners), plus one for a node that can key pairs.
+  !> (counted at the owners); when no part found any pair, one for each node
+  !> that can key pairs (the weights of the first search). Pairs alone, as a
+  !> base weight for every key node would spread the parts over the whole
+  !> surfaces and leave a small contact patch on one part (the tubes).
   subroutine count_keys(ct, sel)
     type(contact_t), intent(inout) :: ct
     type(selection_t), intent(in) :: sel(:)
@@ -469,11 +498,13 @@ contains
     end do
     call par_exchange_counts(count, recv_count)
     call par_exchange(send, count, recv, recv_count)
-    ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
+    ct%key_weight = 0
     do j = 1, sum(recv_count)
       m = ct%own_of(recv(j))
       ct%key_weight(m) = ct%key_weight(m) + 1_i8
     end do
+    ! No pairs anywhere: the key nodes, as before the first search.
+    if (par_sum(sum(recv_count)) == 0) ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
   end subroutine count_keys
 
 

@@ -131,6 +131,10 @@ module contact_state
     integer(i8) :: next_search = 0 !< cycle of the next global search and RCB
     real(rk) :: speed = 0.0_rk !< largest contact node speed at t^n (all ranks)
     integer :: rebuilds = 0 !< global searches (RCB rebuilds) so far
+    integer :: recuts = 0 !< searches whose RCB was cut again (load drift)
+    integer :: balanced_searches = 0 !< searches that found pairs
+    real(rk) :: balance_sum = 0.0_rk !< sum over them of largest part's pairs / mean
+    real(rk) :: balance_worst = 0.0_rk !< the largest of these ratios
     integer :: ncn_max = 0 !< largest local set of this rank so far
     real(rk) :: search_seconds = 0.0_rk, enforce_seconds = 0.0_rk, migrate_seconds = 0.0_rk
     type(records_t) :: kept(3) !< record buffers (DLM, DAM exchange, DAM put-back) between stages
