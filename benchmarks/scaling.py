@@ -154,77 +154,66 @@ def run(exe, case, ranks, workdir, max_load):
 # The text around the generated tables (written after looking at the numbers
 # of the run recorded in scaling_results.json; update it with them).
 NOTES = {}
-NOTES["command"] = r"""# commit 96ebb21 + the one-line fix below, Release (cmake -DCMAKE_BUILD_TYPE=Release), 2026-11-22
-/usr/bin/python3 benchmarks/scaling.py --exe /tmp/scaling/src/build/impact3d --max-load 3.0
-/usr/bin/python3 benchmarks/scaling.py --exe /tmp/scaling/src/build/impact3d --max-load 99 \
-    --cases taylor_dlm_fine taylor_dam_fine
-/usr/bin/python3 benchmarks/scaling.py --exe /tmp/scaling/src/build/impact3d --max-load 99 \
-    --cases tubes_dlm_fine
-# each run: cd /tmp/scaling/<case>_np<N> && mpirun --oversubscribe -np <N> impact3d deck.nml"""
+NOTES["command"] = r"""# search on the RCB parts, sparse exchanges, Release (cmake -DCMAKE_BUILD_TYPE=Release), 2026-11-22
+/usr/bin/python3 benchmarks/scaling.py --exe build-release/impact3d --workdir /tmp/scaling2
+/usr/bin/python3 benchmarks/scaling.py --exe build-release/impact3d --workdir /tmp/scaling2 \
+    --max-load 1.5 --cases taylor_dlm_fine taylor_dam_fine tubes_dlm_fine
+# after the pair-only RCB weights and the load-drift re-cut (commit "RCB weights: ..."):
+/usr/bin/python3 benchmarks/scaling.py --exe build-release/impact3d --workdir /tmp/scaling4 \
+    --max-load 99 --cases taylor_dlm_coarse taylor_dam_coarse tubes_dlm_coarse \
+    tubes_dam_coarse tubes_dlm_fine
+# each run: cd <workdir>/<case>_np<N> && mpirun --oversubscribe -np <N> impact3d deck.nml"""
 NOTES["preamble"] = r"""Decks: `problems/taylor_contact/taylor_case2_steel_{dlm,dam}_{coarse,fine}.nml`
 (contact from the first cycle; coarse t_end = 40 us, fine t_end = 12 us) and
 `problems/tubes/tubes_same_{dlm,dam}.nml` (7680 zones; contact from 26 us, t_end = 60 us),
 each with `dump_interval = 1.0e6` (the summary's dump time is subtracted anyway).
 Fine tubes: the same deck 2x finer around the tube (`n_theta` 32 -> 64) and along
 it (`n_axial` 40 -> 80), wall kept at 3 zones (30 720 zones), t_end = 40 us (contact
-for the last 14 us only, to fit the budget: 94 s on 1 rank), DLM only; DAM fine
-tubes were not run. Machine: 2-core AMD EPYC VM, Open MPI 4.1.4, gfortran -O3.
+for the last 14 us), DLM only. Machine: 2-core AMD EPYC VM, Open MPI 4.1.4,
+gfortran -O3. No other work ran on the machine this time (1-minute load before the runs
+0.5-3.5, "load before" below: our own previous run decaying, as the second set
+ran back to back): 2 ranks are real parallel runs, 4 ranks are oversubscribed
+(2 processes per core).
 
-**Disturbed machine.** Another engineer's debug test suite kept both cores busy
-during the whole session (1-minute load 2.3-4.9 before our runs, "load before"
-below; a run with load above the threshold was repeated once and the repeat is
-recorded). A 1-rank run got about 2/3 of a core; our 2 ranks shared 2 cores with
-2 other busy processes, and 4 ranks are oversubscribed anyway. Read the 1-rank
-splits, the enforcement times, the local sets and the memory as measurements; read
-the 2- and 4-rank communication times (search+RCB, migration, halo) as the cost of
-busy-polling MPI collectives on a time-shared machine, not as a speedup.
-
-**Executable.** HEAD (96ebb21) crashes on 2 and more ranks with a bounds error
-(`contact_rebuild`, `ct%own_of(wanted(j))`): `par_exchange` allocates a receive
-buffer of at least one element, and the loop ran to `size(wanted)` instead of the
-number received, so a rank that owns no requested contact node read one garbage
-index. The runs use a copy of HEAD in /tmp with that loop (and the size of
-`send_own`) set to `sum(ct%send_count)`; nothing under src/ was changed by this
-benchmark. With it, the final dump of every run here is bitwise identical on 1, 2
-and 4 ranks (`h5diff --exclude-path /run`, as tests/regression/regress.py does)."""
+**Executable.** The code with the search on the RCB parts (no replicated
+positions or search) and sparse exchanges. Every run's final dump is bitwise
+identical to the replicated-search code of the previous measurement and across
+1-4 ranks (Taylor DAM/DLM, tubes DAM/DLM, `h5diff --exclude-path /run`)."""
 NOTES["split"] = r"""Loop = run time minus dumps; hydro = loop - (search+RCB + enforcement +
 migration) - halo, so hydro also takes whatever waiting the timers do not see.
 "Search+RCB" starts with the first collective of every contact step (the maximum
-node speed, before the rebuild decision), so it **absorbs the load imbalance of
-the hydro** and every wait for a descheduled rank; migration (marked *) likewise absorbs
-the waits in the later collectives of each stage (alltoall of counts, alltoallv of
-nodes and records) and holds the owners' sums in key order. On 1 rank both are
-real work: search+RCB 0.06-0.44 s (0.2-1.2% of the loop), migration 0.4-0.8 s
-(copies and key-ordered sums).
+node speed, before the rebuild decision), so on 2 and 4 ranks it **absorbs the
+load imbalance of the hydro** (METIS balances zones, not the contact nodes and
+boundary work); migration (marked *) likewise absorbs the waits in the later
+exchanges of each stage and holds the owners' sums in key order. On 1 rank both
+are real work: search+RCB 0.05-0.86 s (0.2-1.0% of the loop), migration 0.3-0.7 s.
 
+* **2 ranks now run faster than 1**: Taylor coarse loop 13.5 -> 7.4 s (DLM)
+  and 14.2 -> 7.9 s (DAM), tubes coarse 21.0 -> 12.2 s (DLM), fine tubes
+  93 -> 56 s. 4 oversubscribed ranks do not gain over 2 (two processes per
+  core, every exchange waits for a descheduled rank).
 * **Enforcement scales** with the RCB parts (largest over the ranks): Taylor
-  coarse DLM 1.81 -> 1.31 -> 0.40 s, DAM 3.44 -> 2.57 -> 0.73 s on 1, 2, 4 ranks;
-  the largest local set falls 241 -> 182 -> 135 nodes (DLM) and 262 -> 196 -> 155
-  (DAM): the rings around each part's pairs cost 50% over the ideal halving at 2
-  ranks and 2.2-2.4x the ideal quarter at 4.
-* **Communication on this machine does not**: on 2 ranks search+RCB and migration
-  go from under 1 s to 2.4-18 s, more than the enforcement they serve; the 2-rank
-  loop is longer than the 1-rank loop in every case. With the cores shared by
-  other processes every collective waits for the slowest rank's next time slice
-  (5-7 collectives per stage for DLM, 12-14 for DAM, 2 stages per cycle). This
-  is the measurement we could make here, not the cost on a dedicated node.
-* **Tubes**: the node halo is 0.01 s on 2 ranks because METIS gives each tube to
-  its own rank (no shared nodes): all coupling goes through the contact. Only
-  94-102 of the 2706 contact nodes are in the local sets (the crossing patch), so
-  contact is 3.5-4.2% of the 1-rank loop over the 60 us (contact for the last
-  34 us). Fine tubes (30 720 zones, 10 530 contact nodes, 14 us of contact):
-  2.0% on 1 rank; on 2 and 4 ranks search+RCB takes 17.6 and 21.1 s of waiting
-  (the replicated search itself is 0.8 s on 1 rank) and the halo 14.8 s on 4.
-* Fine Taylor (24 000 zones, 808 contact nodes, 12 us): contact is 7.5% (DLM)
-  and 11.7% (DAM) of the 1-rank loop, against 12.4% and 18.9% coarse (40 us):
-  the contact surface grows as zones^(2/3). Enforcement 1.76 -> 1.36 -> 0.33 s
-  (DLM) and 2.99 -> 2.12 -> 0.60 s (DAM), local sets 416 -> 279 -> 201 nodes.
-* The 4-rank loops are sometimes shorter than the 1-rank ones (Taylor fine DAM
-  18.4 s against 31.0 s): with the other engineer's 2 busy processes on the
-  machine, 4 of our processes get about 4/6 of the 2 cores and 1 process about
-  1/3, so this is the scheduler's share, not a speedup. The ns per zone-cycle
-  (core) columns multiply the loop by the ranks and mean nothing for the
-  oversubscribed runs either."""
+  coarse DLM 1.18 -> 0.64 -> 0.37 s, DAM 1.68 -> 0.90 -> 0.50 s on 1, 2, 4 ranks;
+  the largest local set falls 241 -> 186 -> 135 (DLM) and 262 -> 197 -> 155 (DAM):
+  the rings around each part's pairs cost 50% over the ideal halving at 2
+  ranks.
+* **Search**: on 1 rank the search (with the RCB, the plan and the local
+  sets) costs what the replicated one did (0.05-0.06 s Taylor, 0.2-0.26 s
+  tubes, 0.86 s fine tubes); on 2 and 4 ranks the column is dominated by the
+  wait described above (tubes: METIS puts one tube on each rank and the struck
+  tube's ranks wait for the other).
+* **Tubes, pair balance**: the first version weighted every key node by 1 plus
+  its pairs; on the tubes the 1's (2706 surface nodes) outweighed the ~100
+  pairs of the crossing patch and every pair landed on one part (local sets
+  0-102 on 2 and 4 ranks). Weights are now the pairs alone, and a search
+  whose pairs put more than 1.2x the mean on one part (with at least 16 pairs
+  per part) re-cuts the RCB with the fresh counts and searches again. End-of-run
+  line `contact pairs per part` (`<workdir>/<case>_np<N>/log.txt`), largest
+  part over the mean: Taylor coarse 1.02-1.06 on average (worst 1.07-1.17, no
+  re-cut) on 2-4 ranks; tubes coarse 1.08-1.30 (worst 2-4 when the first
+  handful of pairs appears; 16 re-cuts in 86 searches for DLM on 4 ranks).
+  Tubes local sets are back to 74-95 nodes (DLM, 2 ranks), as with the
+  replicated search's exact weights."""
 NOTES["memory"] = r"""Working set = per-node arrays of the local set (10 doubles + 1 integer), the
 local surfaces, their geometry caches and the pair caches (DLM's facet pairs,
 DAM's exchange lists), largest over the ranks; whole-surface topology = global
@@ -239,68 +228,51 @@ caches and all the pairs. Two estimates from the 1-rank run of the same case
 grow with the surface); *lower bound* = 1-rank working set + 96 B x (contact
 nodes - 1-rank local set) + topology.
 
-The RCB working set falls with the ranks (Taylor DLM 0.507 -> 0.297 -> 0.179 MB;
-1.3-2.1 kB per local node) while the replicated one would stay at 0.55-0.81 MB on
-every rank. For the tubes, where contact touches a small patch of large
-surfaces, the topology (replicated by design) is already the larger part:
-0.271 MB against a 0.08-0.15 MB working set coarse, 1.07 MB against 0.26 MB for
-the fine tubes (10 530 contact nodes, 138 in the 1-rank local set). At 10^6
-contact nodes the topology is about 100 MB on every rank, plus
-24 MB of positions summed onto every rank at each rebuild and the replicated
-global search's buckets: memory that does not shrink with the rank count."""
+The RCB working set falls with the ranks (Taylor DLM 0.507 -> 0.296 -> 0.180 MB)
+while the replicated one would stay at 0.55-0.81 MB on every rank. The search
+on the parts adds one array of 3 doubles per contact node (`xs`, written only
+where the part received positions; untouched pages are never mapped) and
+no longer sums all positions onto every rank. What stays replicated is the
+static topology (about 100 B per contact node: 100 MB at 10^6 contact nodes)
+and a few O(N_c) scans per search over whole-surface mark arrays."""
 NOTES["projection"] = r"""Model of one cycle on one rank for a 10^7-zone problem (everything below is
 **assumed** unless marked measured):
 
 * hydro + halo compute: measured 1-rank hydro ns per zone-cycle of the Taylor
-  runs (measured on a core shared with other work, so slower than on a quiet
-  one; the compute constants below are inflated alike, so their ratios hold,
-  while the network terms are not) times
-  10^7 / P zones; halo: 2 exchanges per cycle of 12 doubles per shared node over
-  6 (10^7/P)^(2/3) nodes, 26 messages each;
+  runs times 10^7 / P zones; halo: 2 exchanges per cycle of 12 doubles per
+  shared node over 6 (10^7/P)^(2/3) nodes, 26 messages each;
 * contact nodes N_c = 10^5 and 10^6 (the measured meshes scaled at zones^(2/3)
   give 5 x 10^4 for the Taylor anvil and 3 x 10^5 for the tubes); the local-set
   fraction of N_c as measured on 1 rank (65-71%); the RCB splits the local
-  nodes over **all** P parts (it partitions the contact nodes among every rank,
-  so every rank gets pairs), each part's local set = n + 2 x 4 sqrt(n) ring nodes
-  for n = fraction x N_c / P;
+  nodes over **all** P parts, each part's local set = n + 2 x 4 sqrt(n) ring
+  nodes for n = fraction x N_c / P;
 * enforcement: measured us per local node per stage x local set x 2 stages;
 * migration per stage: 72 B (x, v, f) + 48 B (DLM record) per local node, or
-  72 + 104 + 24 + 48 = 248 B (DAM: exchange entry, matched velocities back,
-  put-back record); latency alpha = 2 us, bandwidth 10 GB/s; 3 (DLM) or 8 (DAM)
-  alltoallv per stage at P - 1 messages each (dense: what a pairwise alltoallv
-  does even for empty pairs) or 26 partners (sparse), and 3 (DLM) or 5 (DAM) allreduces
-  or alltoalls of counts at 2 log2 P latencies;
-* rebuild every K cycles (measured K = 14.7-14.8): allreduce of 3 doubles per
-  contact node (ring: 2 x 24 N_c / bandwidth + 2 log2 P alpha); the replicated
-  global search on every rank at the measured 1-rank cost per contact node per
-  rebuild (it includes the local-set construction, also over all contact nodes);
-  the parallel RCB ~ 3 log2 P histogram allreduces per level, log2 P levels, and
-  the plan's alltoall."""
-NOTES["conclusion"] = r"""At 64 ranks contact is 7-8% of the step for 10^5 contact nodes and 41-45% for
-10^6, where the replicated search (160-195 ms per cycle) is already about half
-of the hydro (364-382 ms). At **1024 ranks the replicated rebuild dominates**:
-every rank searches all N_c contact nodes every ~15 cycles, 16-19 ms per cycle
-for 10^5 nodes against 23-24 ms of hydro, and 160-195 ms for 10^6 nodes (contact
-90% of the step). The allreduce of the positions itself is small in time
-(0.03-0.3 ms per cycle amortised) but it is what makes the search replicated,
-and it puts 24 B per contact node on every rank. The second term at 1024 ranks
-is the latency of dense alltoallv's: 12.5 ms (DLM) and 33 ms (DAM, 8 per stage)
-per cycle if every rank pair costs a message, which for DAM at 10^5 nodes is
-**larger** than its replicated search (16 ms). Sparse exchanges remove it (the
-partners are known at each rebuild: MPI_Neighbor_alltoallv on a graph
-communicator, or Isend/Irecv to the non-empty partners): 0.6-1.3 ms. Whether
-Open MPI's alltoallv pays for empty pairs depends on the algorithm it picks;
-this was not measured here. Enforcement itself scales: 0.8-10 ms per cycle.
-
-What removes the dominant term: a **distributed search on the RCB parts** - each
-part keeps the cut planes, receives only the nodes and segments inside its
-region plus the territory margin (migration by cut planes, as for the local
-sets now), searches them, and the rebuild's allreduce of all positions goes
-away (only nodes that crossed a cut move). With that and sparse exchanges the
-projected contact share at 1024 ranks falls to 7-12% (10^5 nodes) and 21-34%
-(10^6 nodes), the rest being enforcement and its rings (last column). The
-whole-surface topology replicated on every rank (about 100 B per contact node)
-would have to become part-local too for 10^6 contact nodes."""
+  72 + 104 + 24 + 48 = 248 B (DAM); latency alpha = 2 us, bandwidth 10 GB/s;
+  3 (DLM) or 8 (DAM) exchanges per stage to ~26 partners (sparse, as the code
+  now does), and 3 (DLM) or 5 (DAM) all-to-alls of one count per rank pair or
+  allreduces (2 log2 P latencies + 4 P bytes each);
+* rebuild every K cycles (measured K = 14.7-14.8): the RCB (~3 log2 P
+  histogram allreduces per level, log2 P levels); the search of the part's
+  share of the contact nodes (N_c / P plus a ring) at the measured 1-rank cost
+  per contact node per rebuild (which includes the plan and the local sets),
+  after the homes shipped them (120 B per item); 3 sparse exchanges with
+  their counts (shipping, plan, key counts); O(N_c) scans of whole-surface
+  arrays on every rank, 5 ns per contact node (assumed).
+* "before" columns: the previous code (positions summed onto every rank, the
+  whole search on every rank, dense alltoallv with P - 1 messages each)."""
+NOTES["conclusion"] = r"""With the search on the parts and sparse exchanges the projected contact
+share at **1024 ranks is 7% (DLM) and 13% (DAM) for 10^5 contact nodes and
+23% / 31% for 10^6**, against 63-91% for the previous code, where the
+replicated search (11-145 ms per cycle) and the dense alltoallv latency
+(12.5-33 ms) dominated. At 64 ranks contact is 2-4% (10^5) and 17-22% (10^6),
+mostly enforcement itself (5.7-62 ms per cycle), which scales with the parts.
+What remains: at 10^6 contact nodes and 1024 ranks the per-stage exchanges
+and the all-to-alls of counts (1.2-1.3 ms) are a quarter of the contact
+time; the whole-surface topology on every rank (100 B per contact node) and
+its O(N_c) scans per search (0.3 ms per search at 10^6) would have to become
+part-local for 10^7 contact nodes. These are model numbers from a 2-core
+machine: the latency and bandwidth are assumptions, not measurements."""
 
 
 # --------------------------------------------------------------------------
@@ -335,7 +307,9 @@ ALLREDUCE_PER_STAGE = {"dlm": 3, "dam": 5}
 
 def projection(results):
     """Per-cycle cost model; the measured constants come from the 1-rank
-    coarse Taylor runs (DLM and DAM)."""
+    coarse Taylor runs (DLM and DAM). Two variants: the code as it is
+    (search on the RCB parts, sparse exchanges) and, for comparison, the
+    previous one (replicated positions and search, dense alltoallv)."""
     out = {"assumptions": dict(PROJ), "rows": []}
     for method in ("dlm", "dam"):
         r = results.get("taylor_%s_coarse" % method, {}).get("1")
@@ -353,6 +327,7 @@ def projection(results):
         for ncn in PROJ["contact_nodes"]:
             for p in PROJ["ranks"]:
                 a, b = PROJ["alpha"], PROJ["beta"]
+                lg = math.log2(p)
                 zr = PROJ["zones"] / p
                 hydro = c_hydro * zr
                 halo = 2 * (PROJ["halo_neighbours"] * a
@@ -363,35 +338,47 @@ def projection(results):
                 n = r["local_max"] / r["contact_nodes"] * ncn / p
                 local = n + PROJ["ring_width"] * 4 * math.sqrt(n)
                 enf = 2 * c_enf * local
-                # Alltoallv: pessimistic (P - 1) messages (pairwise), or a
-                # sparse exchange with ~26 partners; allreduce: 2 log2 P latencies.
-                lg = math.log2(p)
+                # Per stage: the exchanges to the non-empty partners (~26,
+                # sparse) or to all P - 1 (dense), the all-to-all of counts
+                # before each record exchange (one integer per rank pair:
+                # 2 log2 P latencies + 4 P bytes), the allreduces.
                 bytes_stage = BYTES_PER_NODE[method] * local
+                counts = ALLREDUCE_PER_STAGE[method] * (2 * lg * a + 4 * p / b)
                 mig_dense = 2 * (ALLTOALLV_PER_STAGE[method] * (p - 1) * a
                                  + ALLREDUCE_PER_STAGE[method] * 2 * lg * a + bytes_stage / b)
-                mig_sparse = 2 * (ALLTOALLV_PER_STAGE[method] * 26 * a
-                                  + ALLREDUCE_PER_STAGE[method] * 2 * lg * a + bytes_stage / b)
-                # Rebuild every k cycles: allreduce of 3 doubles per contact
-                # node (ring: 2 x bytes / beta + 2 log2 P latencies), the
-                # replicated global search (every rank, all contact nodes),
-                # the RCB (~ 3 log2 P histogram allreduces of 1 kB, assumed)
-                # and the migration plan (alltoall + alltoallv).
-                allred = (2 * 24 * ncn / b + 2 * lg * a) / k
-                search = c_search * ncn / k
-                rcb = (3 * lg * 2 * lg * a + 2 * (p - 1) * a) / k
-                contact = enf + mig_dense + allred + search + rcb
+                mig = 2 * (ALLTOALLV_PER_STAGE[method] * 26 * a + counts + bytes_stage / b)
+                # Rebuild every k cycles. The RCB: ~ 3 log2 P histogram
+                # allreduces per level, log2 P levels. Now: every part
+                # searches its share of all contact nodes (the keys in its
+                # region and the candidates reaching it: N_c / P plus a ring)
+                # at the measured 1-rank cost per contact node, after the
+                # homes shipped them (120 B per item, ~26 partners); the
+                # plan and the key counts (2 sparse exchanges + counts); the
+                # scans of whole-surface arrays (marks, rings, the local-set
+                # map) over all N_c on every rank, 5 ns per node (assumed).
+                # Before: allreduce of 3 doubles per contact node (ring:
+                # 2 x bytes / beta + 2 log2 P latencies), the search of all
+                # contact nodes on every rank, the plan (alltoall + dense
+                # alltoallv).
+                rcb = 3 * lg * 2 * lg * a / k
+                m = ncn / p + PROJ["ring_width"] * 4 * math.sqrt(ncn / p)
+                search = (c_search * m + 120 * m / b + 3 * (26 * a + 2 * lg * a + 4 * p / b)
+                          + 5e-9 * ncn) / k
+                allred_old = (2 * 24 * ncn / b + 2 * lg * a) / k
+                search_old = c_search * ncn / k
+                plan_old = 2 * (p - 1) * a / k
+                contact = enf + mig + search + rcb
+                contact_old = enf + mig_dense + allred_old + search_old + rcb + plan_old
                 total = hydro + halo + contact
+                total_old = hydro + halo + contact_old
                 out["rows"].append({
                     "method": method, "contact_nodes": ncn, "ranks": p,
                     "hydro_ms": 1e3 * hydro, "halo_ms": 1e3 * halo,
-                    "enf_ms": 1e3 * enf, "mig_ms": 1e3 * mig_dense,
-                    "mig_sparse_ms": 1e3 * mig_sparse, "allreduce_ms": 1e3 * allred,
+                    "enf_ms": 1e3 * enf, "mig_ms": 1e3 * mig, "mig_dense_ms": 1e3 * mig_dense,
                     "search_ms": 1e3 * search, "rcb_ms": 1e3 * rcb,
+                    "search_old_ms": 1e3 * (allred_old + search_old + plan_old),
                     "share": 100 * contact / total,
-                    "share_sparse": 100 * (contact - mig_dense + mig_sparse)
-                    / (total - mig_dense + mig_sparse),
-                    "share_distributed_search": 100 * (enf + mig_sparse + rcb)
-                    / (hydro + halo + enf + mig_sparse + rcb)})
+                    "share_old": 100 * contact_old / total_old})
     return out
 
 
@@ -463,8 +450,9 @@ def render(data, path):
             c = proj.get("const_" + m)
             if c:
                 add("* measured (%s, Taylor coarse, 1 rank): hydro+halo %.0f ns per zone-cycle; "
-                    "enforcement %.2f us per local node per stage; replicated global search "
-                    "(with the RCB and the local sets) %.2f us per contact node per rebuild; "
+                    "enforcement %.2f us per local node per stage; global search "
+                    "(with the RCB, the plan and the local sets) %.2f us per contact node per "
+                    "rebuild; "
                     "a rebuild every %.1f cycles; %.0f%% of the contact nodes in the local "
                     "sets." % (
                         m.upper(), 1e9 * c["hydro_s_per_zone_cycle"],
@@ -473,17 +461,16 @@ def render(data, path):
         add("")
         add("Milliseconds per cycle per rank:")
         add("")
-        add("| method | contact nodes | ranks | hydro | halo | enforcement | migration (dense / sparse) "
-            "| rebuild allreduce | replicated search | RCB + plan | contact share | "
-            "share, sparse migration | share, distributed search + sparse |")
+        add("| method | contact nodes | ranks | hydro | halo | enforcement | migration "
+            "| search on the parts (amortised) | RCB | **contact share** | before: migration "
+            "(dense) | before: replicated rebuild | before: contact share |")
         add("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in proj["rows"]:
-            add("| %s | %.0e | %d | %.2f | %.3f | %.3f | %.3f / %.3f | %.3f | %.2f | %.3f | "
-                "**%.0f%%** | %.0f%% | %.0f%% |" % (
+            add("| %s | %.0e | %d | %.2f | %.3f | %.3f | %.3f | %.3f | %.3f | **%.0f%%** | "
+                "%.3f | %.2f | %.0f%% |" % (
                     r["method"].upper(), r["contact_nodes"], r["ranks"], r["hydro_ms"],
-                    r["halo_ms"], r["enf_ms"], r["mig_ms"], r["mig_sparse_ms"],
-                    r["allreduce_ms"], r["search_ms"], r["rcb_ms"], r["share"],
-                    r["share_sparse"], r["share_distributed_search"]))
+                    r["halo_ms"], r["enf_ms"], r["mig_ms"], r["search_ms"], r["rcb_ms"],
+                    r["share"], r["mig_dense_ms"], r["search_old_ms"], r["share_old"]))
         add("")
         add(NOTES["conclusion"])
         add("")
