@@ -262,11 +262,11 @@ NOTES["projection"] = r"""Model of one cycle on one rank for a 10^7-zone problem
 * "before" columns: the previous code (positions summed onto every rank, the
   whole search on every rank, dense alltoallv with P - 1 messages each)."""
 NOTES["conclusion"] = r"""With the search on the parts and sparse exchanges the projected contact
-share at **1024 ranks is 7% (DLM) and 13% (DAM) for 10^5 contact nodes and
-23% / 31% for 10^6**, against 63-91% for the previous code, where the
-replicated search (11-145 ms per cycle) and the dense alltoallv latency
+share at **1024 ranks is 8% (DLM) and 12% (DAM) for 10^5 contact nodes and
+24% / 31% for 10^6**, against 64-91% for the previous code, where the
+replicated rebuild (12-133 ms per cycle) and the dense alltoallv latency
 (12.5-33 ms) dominated. At 64 ranks contact is 2-4% (10^5) and 17-22% (10^6),
-mostly enforcement itself (5.7-62 ms per cycle), which scales with the parts.
+mostly enforcement itself (5.3-65 ms per cycle), which scales with the parts.
 What remains: at 10^6 contact nodes and 1024 ranks the per-stage exchanges
 and the all-to-alls of counts (1.2-1.3 ms) are a quarter of the contact
 time; the whole-surface topology on every rank (100 B per contact node) and
