@@ -1,5 +1,6 @@
-!> Boundary conditions on face sets: symmetry planes, prescribed velocity,
-!> applied pressure and free surfaces. Constraints act on owned nodes as
+!> Boundary conditions on face sets: symmetry planes, rigid unilateral walls
+!> (the set's plane, or a given plane the set reaches later), prescribed
+!> velocity, applied pressure and free surfaces. Constraints act on owned nodes as
 !> v <- P v + v0 (P projects onto the free directions); applied pressure is an
 !> external nodal force gathered in a fixed order.
 module hydro_boundary
@@ -21,6 +22,11 @@ module hydro_boundary
     integer :: kind = BC_FREE !< BC_* code
     real(rk) :: velocity(3) = 0.0_rk !< prescribed velocity (BC_VELOCITY)
     real(rk) :: pressure = 0.0_rk !< applied pressure (BC_PRESSURE)
+    !> BC_WALL given by a plane: a point of it (allocated with wall_normal)
+    real(rk), allocatable :: wall_point(:)
+    !> BC_WALL given by a plane: unit normal out of the wall into the body;
+    !> not allocated: the wall is the set's plane at t = 0
+    real(rk), allocatable :: wall_normal(:)
   end type boundary_spec_t
 
   !> The conditions resolved on this rank's nodes.
@@ -76,6 +82,12 @@ contains
         cycle
       end if
       if (specs(ib)%kind /= BC_SYMMETRY .and. specs(ib)%kind /= BC_WALL) cycle
+      if (specs(ib)%kind == BC_WALL .and. allocated(specs(ib)%wall_normal)) then
+        ! A given plane: the set may be curved, but must start on the body side.
+        normal(:, ib) = -specs(ib)%wall_normal
+        call check_wall_side(ib, s)
+        cycle
+      end if
       total = 0.0_rk
       do f = global%set_start(s), global%set_start(s + 1) - 1
         z = global%set_zone(f)
@@ -216,6 +228,53 @@ contains
 
   contains
 
+    !> A wall given by a plane: every node of set s must be on the body side of
+    !> it (or on it, within 1e-9 of the set's extent) at t = 0.
+    subroutine check_wall_side(ispec, s)
+      integer, intent(in) :: ispec !< index of the &boundary group
+      integer, intent(in) :: s !< its global face set
+      integer :: ff, kk, nbeyond
+      real(rk) :: pts(3, 4), lo(3), hi(3), offset, depth, worst, at(3)
+      logical, allocatable :: beyond(:)
+      character(len=200) :: detail
+      offset = dot_product(normal(:, ispec), specs(ispec)%wall_point)
+      lo = huge(1.0_rk)
+      hi = -huge(1.0_rk)
+      do ff = global%set_start(s), global%set_start(s + 1) - 1
+        pts = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, &
+            global%set_face(ff)), global%set_zone(ff)))
+        lo = min(lo, minval(pts, dim=2))
+        hi = max(hi, maxval(pts, dim=2))
+      end do
+      allocate(beyond(global%nnode))
+      beyond = .false.
+      worst = 0.0_rk
+      at = 0.0_rk
+      do ff = global%set_start(s), global%set_start(s + 1) - 1
+        pts = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, &
+            global%set_face(ff)), global%set_zone(ff)))
+        do kk = 1, 4
+          depth = dot_product(normal(:, ispec), pts(:, kk)) - offset
+          if (depth <= 1.0e-9_rk * norm2(hi - lo)) cycle
+          beyond(global%connectivity(HEX_FACE_NODES(kk, global%set_face(ff)), &
+              global%set_zone(ff))) = .true.
+          if (depth > worst) then
+            worst = depth
+            at = pts(:, kk)
+          end if
+        end do
+      end do
+      nbeyond = count(beyond)
+      if (nbeyond == 0) return
+      write(text, '(i0)') ispec
+      write(detail, '(i0,a,3(1x,es12.5),a,es10.3)') nbeyond, ' node(s) of set '''// &
+          trim(specs(ispec)%set)//''' start beyond the wall plane, the farthest (', at, &
+          ') by', worst
+      call status%add('&boundary('//trim(text)//'): wall_point: '//trim(detail)// &
+          ' cm (the set must start on the body side; wall_normal points out of the '// &
+          'wall into the body)')
+    end subroutine check_wall_side
+
     subroutine setup_walls()
       integer :: iw, sg, ff, kk, nn, count_wall
       real(rk) :: offset, extent(3, 2), pts(3, 4)
@@ -227,13 +286,17 @@ contains
         if (specs(iw)%kind /= BC_WALL) cycle
         sg = global%find_set(specs(iw)%set)
         offset = 0.0_rk
+        if (allocated(specs(iw)%wall_normal)) offset = dot_product(normal(:, iw), &
+            specs(iw)%wall_point)
         extent(:, 1) = huge(1.0_rk)
         extent(:, 2) = -huge(1.0_rk)
         do ff = global%set_start(sg), global%set_start(sg + 1) - 1
           pts = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, &
               global%set_face(ff)), global%set_zone(ff)))
-          offset = max(offset, maxval(matmul(normal(:, iw), pts)))
-          if (ff == global%set_start(sg)) offset = maxval(matmul(normal(:, iw), pts))
+          if (.not. allocated(specs(iw)%wall_normal)) then
+            offset = max(offset, maxval(matmul(normal(:, iw), pts)))
+            if (ff == global%set_start(sg)) offset = maxval(matmul(normal(:, iw), pts))
+          end if
           extent(:, 1) = min(extent(:, 1), minval(pts, dim=2))
           extent(:, 2) = max(extent(:, 2), maxval(pts, dim=2))
         end do

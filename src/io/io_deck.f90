@@ -117,7 +117,8 @@ contains
           'velocity', 'radial_u0', 'radial_r0', 'radial_k', 'center', 'deposit_energy', &
           'deposit_point']
     case ('boundary')
-      keys = [character(len=KEY_LEN) :: 'set', 'type', 'velocity', 'pressure']
+      keys = [character(len=KEY_LEN) :: 'set', 'type', 'velocity', 'pressure', 'wall_point', &
+          'wall_normal']
     case ('output')
       keys = [character(len=KEY_LEN) :: 'directory', 'prefix', 'dump_interval', &
           'dump_cycles', 'status_every', 'history_every']
@@ -865,17 +866,19 @@ contains
     type(status_t), intent(inout) :: status
     character(len=NAME_LEN) :: set
     character(len=32) :: type
-    real(rk) :: velocity(3), pressure
+    real(rk) :: velocity(3), pressure, wall_point(3), wall_normal(3)
     integer :: ios
     character(len=256) :: msg
     character(len=16) :: where
-    namelist /boundary/ set, type, velocity, pressure
+    namelist /boundary/ set, type, velocity, pressure, wall_point, wall_normal
 
     write(where, '(a,i0,a)') '&boundary(', index, ')'
     set = ''
     type = ''
     velocity = UNSET
     pressure = UNSET
+    wall_point = UNSET
+    wall_normal = UNSET
     read(sect, nml=boundary, iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(trim(where)//': cannot read the group: '//trim(msg))
@@ -910,6 +913,41 @@ contains
         ': velocity: only for type = ''velocity''')
     if (bc%kind /= BC_PRESSURE .and. pressure /= UNSET) call status%add(trim(where)// &
         ': pressure: only for type = ''pressure''')
+    call read_wall_plane()
+
+  contains
+
+    !> Optional wall plane: both keys (3 components each) or neither.
+    subroutine read_wall_plane()
+      logical :: has_point, has_normal
+      has_point = any(wall_point /= UNSET)
+      has_normal = any(wall_normal /= UNSET)
+      if (.not. (has_point .or. has_normal)) return
+      if (bc%kind /= BC_WALL) then
+        if (has_point) call status%add(trim(where)//': wall_point: only for type = ''wall''')
+        if (has_normal) call status%add(trim(where)//': wall_normal: only for type = ''wall''')
+        return
+      end if
+      if (has_point .and. any(wall_point == UNSET)) call status%add(trim(where)// &
+          ': wall_point: needs 3 components (a point of the wall plane, cm)')
+      if (has_normal .and. any(wall_normal == UNSET)) call status%add(trim(where)// &
+          ': wall_normal: needs 3 components (the plane''s normal out of the wall into the body)')
+      if (has_point .and. .not. has_normal) call status%add(trim(where)// &
+          ': wall_normal: required with wall_point (give both to place the wall, or neither '// &
+          'for the set''s plane at t = 0)')
+      if (has_normal .and. .not. has_point) call status%add(trim(where)// &
+          ': wall_point: required with wall_normal (give both to place the wall, or neither '// &
+          'for the set''s plane at t = 0)')
+      if (.not. (all(wall_point /= UNSET) .and. all(wall_normal /= UNSET))) return
+      if (.not. norm2(wall_normal) > 0.0_rk) then
+        call status%add(trim(where)//': wall_normal: must not be the zero vector (it points '// &
+            'out of the wall into the body)')
+        return
+      end if
+      bc%wall_point = wall_point
+      bc%wall_normal = wall_normal / norm2(wall_normal)
+    end subroutine read_wall_plane
+
   end subroutine read_boundary
 
   subroutine read_contact(sect, index, pair, status)

@@ -289,6 +289,27 @@ def build_cases():
     c.append(Case("boundary_set_missing",
                   sub("set = 'zmax', type = 'symmetry'", "type = 'symmetry'"),
                   ["&boundary(6): set: required"]))
+    # A wall given by a plane: both keys or neither, a nonzero normal, and the
+    # set on the body side of the plane at t = 0.
+    c.append(Case("boundary_wall_point_without_normal",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'wall', wall_point = 2.0, 0.0, 0.0"),
+                  ["&boundary(2): wall_normal: required with wall_point"]))
+    c.append(Case("boundary_wall_normal_zero",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'wall', wall_point = 2.0, 0.0, 0.0, "
+                      "wall_normal = 0.0, 0.0, 0.0"),
+                  ["&boundary(2): wall_normal: must not be the zero vector"]))
+    c.append(Case("boundary_wall_set_beyond_plane",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'wall', wall_point = 0.5, 0.0, 0.0, "
+                      "wall_normal = -1.0, 0.0, 0.0"),
+                  ["&boundary(2): wall_point: 4 node(s) of set 'xmax' start beyond the wall "
+                   "plane"]))
+    c.append(Case("boundary_wall_normal_on_symmetry",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'symmetry', wall_normal = -1.0, 0.0, 0.0"),
+                  ["&boundary(2): wall_normal: only for type = 'wall'"]))
     # --- &output ---------------------------------------------------------------
     c.append(Case("output_directory_missing",
                   sub("  directory = '{dir}'\n", "  directory = '{dir}/no_such_dir'\n"),
