@@ -16,7 +16,7 @@ Runs (decks generated from problems/*/*.nml, only the keys named changed):
     riemann2_200                Sod states with gamma_L = 1.4, gamma_R = 5/3:
                                 two materials, two blocks split at x = 0.5
     sedov_15, sedov_30, sedov_60      Sedov octant, n^3 zones (no 60^3 with --quick)
-    noh_30                      Noh octant 30^3 (the deck as it is)
+    noh_40                      Noh octant 40^3 (the deck as it is)
     saltzman                    Saltzman piston 100 x 10 x 1 (the deck as it is)
 
 The final dump of each run is compared with the exact solution through
@@ -75,7 +75,8 @@ CRITERIA = {
     "riemann2": "L1(rho) below the test's bound; shock and contact (material "
                 "interface) within 2 zones of exact",
     "sedov": "shock radius within 2 % of exact at 30^3; L1(rho) rate 15^3 -> 30^3 >= 0.5",
-    "noh": "runs to t = 0.6 without tangling; shock radius within 10 % of 0.2",
+    "noh": "runs to t = 0.6 without tangling; shock radius within 10 % of 0.2; "
+           "mean density 0.05 < r < 0.15 >= 48",
     "saltzman": "runs to t = 0.7 without tangling; every zone with 0.75 < x < 0.88 "
                 "has density 4 +- 5 %",
 }
@@ -377,7 +378,7 @@ def do_sedov(opts, img, results):
 
 
 def do_noh(opts, img, results):
-    rec = run_case("noh_30", noh_deck(), opts)
+    rec = run_case("noh_40", noh_deck(), opts)
     out = {"run": rec}
     results["noh"] = out
     if rec["rc"] != 0:
@@ -404,7 +405,7 @@ def do_noh(opts, img, results):
                rho_shell_exact=float(np.sum(rho_ex * volume) / np.sum(volume)),
                nzone_shell=int(np.count_nonzero(shell)))
     plot("noh", rec["dump"], os.path.join(img, "noh_profiles.png"),
-         f"Noh octant, 30^3 zones, t = {s['time']:.3g} (radius <= 0.6 shown)",
+         f"Noh octant, 40^3 zones, t = {s['time']:.3g} (radius <= 0.6 shown)",
          ["--region", "0", "0.6"])
 
 
@@ -593,13 +594,13 @@ def write_doc(path, opts, results, wall_total, command):
     if "s" in noh:
         s = noh["s"]
         err = s["shock_r"] / 0.2 - 1.0
-        add(f"| Noh | shock radius, 30^3 | {s['shock_r']:.4f} ({100 * err:+.1f} %) | 0.2 | "
+        add(f"| Noh | shock radius, 40^3 | {s['shock_r']:.4f} ({100 * err:+.1f} %) | 0.2 | "
             f"within 10 % | {yes(abs(err) <= 0.10)} |")
         add(f"| Noh | mean density, 0.05 < r < 0.3 (mass / volume) | {noh['rho_shell']:.2f} | "
             f"{noh['rho_shell_exact']:.2f} | | |")
         add(f"| Noh | L1(rho), 0.05 < r < 0.3 | {s['L1_rho']:.2f} | 0 | | |")
         add(f"| Noh | mean post-shock density, 0.05 < r < 0.15 | {s['rho_post_mean']:.1f} | "
-            f"{s['rho_post_exact']:.0f} | | |")
+            f"{s['rho_post_exact']:.0f} | >= 48 | {yes(s['rho_post_mean'] >= 48.0)} |")
         add(f"| Noh | lowest density r < 0.05 (wall heating) | {s['rho_center_min']:.1f} | "
             f"{s['rho_post_exact']:.0f} | | |")
     sz = results.get("saltzman", {})
@@ -705,7 +706,7 @@ def write_doc(path, opts, results, wall_total, command):
 
     add("## Noh implosion\n")
     add("gamma = 5/3, rho0 = 1, u = -r_hat, t = 0.6: shock at r = 0.2, post-shock density "
-        "64, pre-shock density (1 + t/r)^2. Octant [0, 1]^3, 30^3 zones: "
+        "64, pre-shock density (1 + t/r)^2. Octant [0, 1]^3, 40^3 zones: "
         "`problems/noh/noh.nml` as it is.\n")
     add("**Checks** that a strong converging shock runs to the end on a Cartesian mesh "
         "without tangling, and how far scalar viscosity gets: the shock radius (where the "
@@ -713,9 +714,13 @@ def write_doc(path, opts, results, wall_total, command):
         "in the shell 0.05 < r < 0.3 (mass over volume of the zones whose centroid is in it, "
         "against the same mean of the exact density at those centroids; the shell holds "
         "post-shock gas and the pre-shock compression ahead of the shock), the post-shock "
-        "plateau 0.05 < r < 0.15 and the wall-heating dip r < 0.05. At 30^3 only a few zones "
-        "lie behind the shock, so the plateau does not reach 64; the criterion is on the "
-        "shock radius, which the viscosity controls.\n")
+        "plateau 0.05 < r < 0.15 and the wall-heating dip r < 0.05. Both viscosity terms "
+        "are limited (an unlimited linear term preheats the cold inflow: pre-shock e = 5e-3 "
+        "instead of 1e-10 at r = 0.3, and the shock runs to +15 % at 30^3). The plateau "
+        "does not reach 64: the gas shocked while the shock was a few zones from the "
+        "origin keeps the start-up entropy error of scalar viscosity (wall heating), so "
+        "the density rises from about 42 near the origin to about 57 behind the front. "
+        "At 30^3 the shock radius is +11.5 %, at 40^3 +7.6 %, at 45^3 +6.8 %.\n")
     add(f"**ctest criterion**: {CRITERIA['noh']}.\n")
     if "s" in noh:
         s = noh["s"]
@@ -737,7 +742,7 @@ def write_doc(path, opts, results, wall_total, command):
         add("")
     elif "run" in noh:
         add(failed_line(noh["run"]))
-    add("![Noh profiles at 30^3](img/noh_profiles.png)\n")
+    add("![Noh profiles at 40^3](img/noh_profiles.png)\n")
     add("Equivalent command: `tools/compare.py --problem noh --region 0.05 0.3 DUMP`.\n")
 
     add("## Saltzman piston\n")

@@ -251,12 +251,15 @@ contains
   !> Monotonic (Christensen-type) limited viscosity of zones 1..n. Along each
   !> logical direction d in compression (g_d < 0) the limiter is
   !> phi_d = max(0, min((r- + r+)/2, 2 r-, 2 r+, 1)), r+- the neighbours'
-  !> stretching rates over the zone's own; the zone takes phi = min_d phi_d
-  !> (smooth only if smooth in every direction) and
+  !> stretching rates over the zone's own; the zone takes the compression-weighted
+  !> mean phi = sum_d |g_d| phi_d / sum_d |g_d| over those directions (a weakly
+  !> compressed direction with a noisy ratio, as near the axis of a converging
+  !> flow, no longer switches on the whole zone's q; a plane shock along a mesh
+  !> direction is unchanged) and
   !> q = rho (1 - phi)^2 C2 (L D)^2 + rho (1 - phi_l) C1 c L |D| for D = div v < 0,
   !> phi_l = phi when linear_limited (default), else 0: an unlimited linear term
-  !> damps hot regions (it keeps the Noh axes from jetting into a collapse) but
-  !> dissipates smooth and weak waves (an elastic bar loses 3.6% of its rebound).
+  !> dissipates smooth and weak waves (an elastic bar loses 3.6% of its rebound)
+  !> and preheats a cold converging inflow (Noh).
   !> A missing neighbour counts as r = 1 on a symmetry plane, r = 0 elsewhere.
   subroutine zone_limited_viscosity(n, neighbour, neighbour_face, symmetric, gradient, &
       q_linear, q_quadratic, linear_limited, density, sound_speed, length, divergence, q)
@@ -269,20 +272,27 @@ contains
     real(rk), intent(in) :: density(:), sound_speed(:), length(:), divergence(:)
     real(rk), intent(inout) :: q(:)
     integer :: z, d
-    real(rk) :: g, rm, rp, phi, du, phi_linear
+    real(rk) :: g, rm, rp, phi, du, phi_linear, wsum
     do z = 1, n
       if (divergence(z) >= 0.0_rk) then
         q(z) = 0.0_rk
         cycle
       end if
-      phi = 1.0_rk
+      phi = 0.0_rk
+      wsum = 0.0_rk
       do d = 1, 3
         g = gradient(d, z)
         if (g >= 0.0_rk) cycle
         rm = ratio(FACE_MINUS(d))
         rp = ratio(FACE_PLUS(d))
-        phi = min(phi, max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk)))
+        phi = phi - g * max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk))
+        wsum = wsum - g
       end do
+      if (wsum > 0.0_rk) then
+        phi = phi / wsum
+      else
+        phi = 1.0_rk
+      end if
       du = length(z) * divergence(z)
       phi_linear = 0.0_rk
       if (linear_limited) phi_linear = phi
