@@ -5,7 +5,8 @@ module app_setup
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_gmsh, only: mesh_read_gmsh
-  use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant
+  use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, &
+      mesh_make_ball_octant, mesh_make_box_minus_ball
   use mesh_local, only: mesh_t, mesh_build_local
   use contact_surface, only: set_names_of
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS
@@ -104,6 +105,10 @@ contains
           call mesh_make_tube(spec%tube, piece, status)
         case ('shell')
           call mesh_make_shell_octant(spec%shell, piece, status)
+        case ('ball')
+          call mesh_make_ball_octant(spec%ball, piece, status)
+        case ('box_minus_ball')
+          call mesh_make_box_minus_ball(spec%box_minus_ball, piece, status)
         case ('gmsh')
           call mesh_read_gmsh(trim(spec%mesh_file), piece, group_names, status)
         case default

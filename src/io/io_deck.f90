@@ -7,7 +7,8 @@ module io_deck
   use core_status, only: status_t
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
-  use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t
+  use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t, ball_spec_t, &
+      box_minus_ball_spec_t
   use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library, &
       STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC, STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK
   use material_flow_stress, only: sg_set, jc_set, SG_SET_NAMES, JC_SET_NAMES
@@ -55,6 +56,8 @@ module io_deck
     type(rod_spec_t) :: rod
     type(tube_spec_t) :: tube
     type(shell_spec_t) :: shell
+    type(ball_spec_t) :: ball
+    type(box_minus_ball_spec_t) :: box_minus_ball
     character(len=PATH_LEN) :: mesh_file = ''
     real(rk) :: offset(3) = 0.0_rk !< translation applied to the part
     character(len=NAME_LEN) :: block = '' !< every zone of the part in this &block
@@ -513,7 +516,7 @@ contains
     select case (part%mesh_type)
     case ('box')
       if (curved_keys) call status%add(trim(where)//': type: ''box'' takes x, y, z, nx, ny, nz, '// &
-          'ratio_*, skew_amplitude, perturb (radius, ri, ro, n_* belong to rod, tube, shell)')
+          'ratio_*, skew_amplitude, perturb (radius, ri, ro, n_* belong to the curved types)')
       call direction('x', x, nx, ratio_x, 1)
       call direction('y', y, ny, ratio_y, 2)
       call direction('z', z, nz, ratio_z, 3)
@@ -552,6 +555,47 @@ contains
       if (n_patch /= -1) part%shell%n_patch = n_patch
       if (n_radial /= -1) part%shell%n_radial = n_radial
       if (radial_ratio /= UNSET) part%shell%radial_ratio = radial_ratio
+    case ('ball')
+      if (box_keys) call status%add(trim(where)//': type: ''ball'' does not take box keys '// &
+          '(x, nx, ...)')
+      if (length /= UNSET .or. ri /= UNSET .or. ro /= UNSET .or. n_axial /= -1 .or. &
+          n_theta /= -1 .or. n_patch /= -1) call status%add(trim(where)//': type: ''ball'' '// &
+          'takes radius, n_core, n_radial, radial_ratio, core_fraction')
+      if (radius /= UNSET) part%ball%radius = radius
+      if (n_core /= -1) part%ball%n_core = n_core
+      if (n_radial /= -1) part%ball%n_radial = n_radial
+      if (radial_ratio /= UNSET) part%ball%radial_ratio = radial_ratio
+      if (core_fraction /= UNSET) part%ball%core_fraction = core_fraction
+      associate(ball => part%ball)
+        if (.not. (ball%radius > 0.0_rk)) call status%add(trim(where)//': radius: must be > 0')
+        if (ball%n_core < 1) call status%add(trim(where)//': n_core: must be >= 1')
+        if (ball%n_radial < 1) call status%add(trim(where)//': n_radial: must be >= 1')
+        if (.not. (ball%radial_ratio > 0.0_rk)) call status%add(trim(where)//': radial_ratio: '// &
+            'must be > 0')
+        if (.not. (ball%core_fraction >= 0.2_rk .and. ball%core_fraction <= 0.5_rk)) &
+            call status%add(trim(where)//': core_fraction: must be in [0.2, 0.5] (the core '// &
+            'corner inside the sphere)')
+      end associate
+    case ('box_minus_ball')
+      if (box_keys) call status%add(trim(where)//': type: ''box_minus_ball'' does not take box '// &
+          'keys (x, nx, ...)')
+      if (ri /= UNSET .or. ro /= UNSET .or. n_axial /= -1 .or. n_theta /= -1 .or. &
+          n_core /= -1) call status%add(trim(where)//': type: ''box_minus_ball'' takes '// &
+          'radius, length, n_patch, n_radial, radial_ratio')
+      if (radius /= UNSET) part%box_minus_ball%radius = radius
+      if (length /= UNSET) part%box_minus_ball%length = length
+      if (n_patch /= -1) part%box_minus_ball%n_patch = n_patch
+      if (n_radial /= -1) part%box_minus_ball%n_radial = n_radial
+      if (radial_ratio /= UNSET) part%box_minus_ball%radial_ratio = radial_ratio
+      associate(cavity => part%box_minus_ball)
+        if (.not. (cavity%radius > 0.0_rk)) call status%add(trim(where)//': radius: must be > 0')
+        if (.not. (cavity%length > cavity%radius)) call status%add(trim(where)//': length: '// &
+            'must be > radius (the box edge beyond the sphere)')
+        if (cavity%n_patch < 1) call status%add(trim(where)//': n_patch: must be >= 1')
+        if (cavity%n_radial < 1) call status%add(trim(where)//': n_radial: must be >= 1')
+        if (.not. (cavity%radial_ratio > 0.0_rk)) call status%add(trim(where)//': '// &
+            'radial_ratio: must be > 0')
+      end associate
     case ('gmsh')
       if (box_keys .or. curved_keys) call status%add(trim(where)//': type: ''gmsh'' takes only file')
       if (len_trim(file) == 0) then

@@ -1,5 +1,7 @@
 !> Hex meshes of curved bodies without degenerate zones: a solid rod (O-grid),
-!> a thick tube and a spherical shell octant (cubed-sphere patches).
+!> a thick tube, a spherical shell octant (cubed-sphere patches), a ball octant
+!> (cube core and three patches out to the sphere) and the octant of a box
+!> minus a ball (three patches from the sphere out to the box faces).
 !>
 !> Each body is assembled from structured blocks (logical i, j, k). A block
 !> whose first hex comes out left-handed is mirrored in i, so every hex has the
@@ -17,8 +19,9 @@ module mesh_curved
   use mesh_global, only: global_mesh_t, interval_points, NAME_LEN
   implicit none
   private
-  public :: rod_spec_t, tube_spec_t, shell_spec_t
-  public :: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant
+  public :: rod_spec_t, tube_spec_t, shell_spec_t, ball_spec_t, box_minus_ball_spec_t
+  public :: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, mesh_make_ball_octant
+  public :: mesh_make_box_minus_ball
 
   real(rk), parameter :: PI = acos(-1.0_rk)
   !> Angle between a bulged core edge and the straight one at the core corner:
@@ -69,6 +72,28 @@ module mesh_curved
     integer :: n_radial = 8 !< zones from ri to ro
     real(rk) :: radial_ratio = 1.0_rk !< last/first zone thickness (outward)
   end type shell_spec_t
+
+  !> Ball octant (x, y, z >= 0) of radius R centred at 0: a cube core
+  !> [0, a]^3 and three patches, each joining one outer core face to the
+  !> sphere by straight lines (the 3D analogue of the rod's O-grid).
+  type :: ball_spec_t
+    real(rk) :: radius = 0.5_rk !< R
+    integer :: n_core = 8 !< zones along each core edge (and each patch edge on the sphere)
+    integer :: n_radial = 6 !< zones from the core face to the sphere
+    real(rk) :: radial_ratio = 1.0_rk !< last/first zone thickness (outward)
+    real(rk) :: core_fraction = 0.45_rk !< a = f R, 0.2 <= f <= 0.5
+  end type ball_spec_t
+
+  !> Octant of the box [0, L]^3 minus the ball r < R (R < L): three patches,
+  !> each mapping a cubed-sphere patch of the sphere to one outer box face
+  !> along rays from the origin.
+  type :: box_minus_ball_spec_t
+    real(rk) :: radius = 0.5_rk !< R, the sphere
+    real(rk) :: length = 1.2_rk !< L, the box edge
+    integer :: n_patch = 12 !< zones along each edge of the three patches
+    integer :: n_radial = 16 !< zones from the sphere to the box faces
+    real(rk) :: radial_ratio = 1.0_rk !< last/first zone length along a ray (outward)
+  end type box_minus_ball_spec_t
 
   !> One structured block of n(1) x n(2) x n(3) hexes.
   type :: block_t
@@ -356,7 +381,160 @@ contains
         'zsym'], spec%ro, mesh)
   end subroutine mesh_make_shell_octant
 
+
+  !> Ball octant: the core block (i, j, k along x, y, z) and three patches
+  !> (i, j across the core face, k from the core face to the sphere; patch 1
+  !> on the face x = a, 2 on y = a, 3 on z = a). The sphere nodes are
+  !> equiangular cubed-sphere points, radius times a unit direction.
+  !> Sets: outer (the sphere), xmin, ymin, zmin.
+  subroutine mesh_make_ball_octant(spec, mesh, status)
+    type(ball_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    integer, parameter :: OUTER = 1, XMIN = 2, YMIN = 3, ZMIN = 4
+    type(block_t) :: blocks(4)
+    real(rk), allocatable :: s(:), t(:)
+    real(rk) :: a, d(3, 3), core(3, 3), across
+    integer :: nerr, nc, nr, i, j, k, patch
+
+    call mesh%free()
+    nerr = status%count
+    call require(status, spec%radius > 0.0_rk, 'ball: radius must be > 0 (got ' // &
+        real_text(spec%radius) // ')')
+    call require_count(status, 'ball: n_core', spec%n_core, 1)
+    call require_count(status, 'ball: n_radial', spec%n_radial, 1)
+    call require(status, spec%radial_ratio > 0.0_rk, 'ball: radial_ratio must be > 0 (got ' &
+        // real_text(spec%radial_ratio) // ')')
+    call require(status, spec%core_fraction >= 0.2_rk .and. spec%core_fraction <= 0.5_rk, &
+        'ball: core_fraction must be in [0.2, 0.5] (got ' // real_text(spec%core_fraction) // &
+        ')')
+    if (status%count > nerr) return
+
+    nc = spec%n_core
+    nr = spec%n_radial
+    a = spec%core_fraction * spec%radius
+    call interval_points(1, [0.0_rk, 1.0_rk], [nr], [spec%radial_ratio], s)
+    s(0) = 0.0_rk
+    s(nr) = 1.0_rk
+    call patch_tangents(nc, t)
+    call block_new(blocks(1), nc, nc, nc, [ZMIN, 0, YMIN, 0, 0, XMIN])
+    call block_new(blocks(2), nc, nc, nr, [0, OUTER, ZMIN, 0, 0, YMIN])
+    call block_new(blocks(3), nc, nc, nr, [0, OUTER, ZMIN, 0, 0, XMIN])
+    call block_new(blocks(4), nc, nc, nr, [0, OUTER, YMIN, 0, 0, XMIN])
+    do k = 0, nc
+      do j = 0, nc
+        do i = 0, nc
+          blocks(1)%x(:, i, j, k) = a * [core_coordinate(i), core_coordinate(j), &
+              core_coordinate(k)]
+        end do
+      end do
+    end do
+    do j = 0, nc
+      do i = 0, nc
+        d(:, 1) = [1.0_rk, t(i), t(j)]
+        d(:, 2) = [t(i), 1.0_rk, t(j)]
+        d(:, 3) = [t(i), t(j), 1.0_rk]
+        across = a * core_coordinate(i)
+        core(:, 1) = [a, across, a * core_coordinate(j)]
+        core(:, 2) = [across, a, a * core_coordinate(j)]
+        core(:, 3) = [across, a * core_coordinate(j), a]
+        do patch = 1, 3
+          d(:, patch) = spec%radius * d(:, patch) / sqrt(sum(d(:, patch)**2))
+          do k = 0, nr
+            blocks(patch + 1)%x(:, i, j, k) = (1.0_rk - s(k)) * core(:, patch) &
+                + s(k) * d(:, patch)
+          end do
+          ! The sphere node exactly radius times the unit direction.
+          blocks(patch + 1)%x(:, i, j, nr) = d(:, patch)
+        end do
+      end do
+    end do
+    call assemble(blocks, [character(len=NAME_LEN) :: 'outer', 'xmin', 'ymin', 'zmin'], &
+        spec%radius, mesh)
+
+  contains
+
+    !> Core node coordinate i / nc, exactly 0 and 1 at the ends.
+    pure real(rk) function core_coordinate(ii)
+      integer, intent(in) :: ii
+      core_coordinate = real(ii, rk) / real(nc, rk)
+    end function core_coordinate
+
+  end subroutine mesh_make_ball_octant
+
+  !> Box minus ball octant: three patches (i, j the equiangular patch angles,
+  !> k along the ray from the sphere to the box face; patch 1 ends on x = L,
+  !> 2 on y = L, 3 on z = L). Node (i, j, k) lies on the ray through the
+  !> cubed-sphere direction (i, j); the sphere nodes are radius times the unit
+  !> direction, the box nodes L (1, tan, tan) (the face coordinate exactly L).
+  !> Sets: inner (the sphere), xmin, ymin, zmin, xmax, ymax, zmax.
+  subroutine mesh_make_box_minus_ball(spec, mesh, status)
+    type(box_minus_ball_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    integer, parameter :: INNER = 1, XMIN = 2, YMIN = 3, ZMIN = 4, XMAX = 5, YMAX = 6, ZMAX = 7
+    type(block_t) :: blocks(3)
+    real(rk), allocatable :: s(:), t(:)
+    real(rk) :: d(3, 3), sphere(3)
+    integer :: nerr, np, nr, i, j, k, patch
+
+    call mesh%free()
+    nerr = status%count
+    call require(status, spec%radius > 0.0_rk, 'box_minus_ball: radius must be > 0 (got ' // &
+        real_text(spec%radius) // ')')
+    call require(status, spec%length > spec%radius, 'box_minus_ball: length must be > ' // &
+        'radius (got radius = ' // real_text(spec%radius) // ', length = ' // &
+        real_text(spec%length) // ')')
+    call require_count(status, 'box_minus_ball: n_patch', spec%n_patch, 1)
+    call require_count(status, 'box_minus_ball: n_radial', spec%n_radial, 1)
+    call require(status, spec%radial_ratio > 0.0_rk, 'box_minus_ball: radial_ratio must be ' &
+        // '> 0 (got ' // real_text(spec%radial_ratio) // ')')
+    if (status%count > nerr) return
+
+    np = spec%n_patch
+    nr = spec%n_radial
+    call interval_points(1, [0.0_rk, 1.0_rk], [nr], [spec%radial_ratio], s)
+    s(0) = 0.0_rk
+    s(nr) = 1.0_rk
+    call patch_tangents(np, t)
+    call block_new(blocks(1), np, np, nr, [INNER, XMAX, ZMIN, 0, 0, YMIN])
+    call block_new(blocks(2), np, np, nr, [INNER, YMAX, ZMIN, 0, 0, XMIN])
+    call block_new(blocks(3), np, np, nr, [INNER, ZMAX, YMIN, 0, 0, XMIN])
+    do j = 0, np
+      do i = 0, np
+        d(:, 1) = [1.0_rk, t(i), t(j)]
+        d(:, 2) = [t(i), 1.0_rk, t(j)]
+        d(:, 3) = [t(i), t(j), 1.0_rk]
+        do patch = 1, 3
+          sphere = spec%radius * d(:, patch) / sqrt(sum(d(:, patch)**2))
+          blocks(patch)%x(:, i, j, 0) = sphere
+          do k = 1, nr
+            blocks(patch)%x(:, i, j, k) = (1.0_rk - s(k)) * sphere + s(k) * spec%length &
+                * d(:, patch)
+          end do
+          blocks(patch)%x(:, i, j, nr) = spec%length * d(:, patch)
+        end do
+      end do
+    end do
+    call assemble(blocks, [character(len=NAME_LEN) :: 'inner', 'xmin', 'ymin', 'zmin', &
+        'xmax', 'ymax', 'zmax'], spec%length, mesh)
+  end subroutine mesh_make_box_minus_ball
+
   ! ---------------------------------------------------------------- helpers
+
+  !> Tangents of the equiangular cubed-sphere patch coordinates i pi / (4 n),
+  !> i = 0..n, exactly 0 and 1 at the ends.
+  pure subroutine patch_tangents(n, t)
+    integer, intent(in) :: n
+    real(rk), allocatable, intent(out) :: t(:) !< (0:n)
+    integer :: i
+    allocate(t(0:n))
+    do i = 0, n
+      t(i) = tan(0.25_rk * PI * real(i, rk) / real(n, rk))
+    end do
+    t(0) = 0.0_rk
+    t(n) = 1.0_rk
+  end subroutine patch_tangents
 
   !> Allocate a block of n1 x n2 x n3 zones with the given face sets.
   subroutine block_new(block, n1, n2, n3, face_set)

@@ -214,6 +214,19 @@ def build_cases():
     c.append(Case("hydro_unknown_hourglass", append("&hydro hourglass = 'magic' /\n"),
                   ["&hydro: hourglass: 'magic' is not a hourglass control"]))
     # --- &mesh ---------------------------------------------------------------
+    box_group = ("  type = 'box'\n  x = 0.0, 1.0\n  nx = 10\n  y = 0.0, 0.1\n  ny = 1\n"
+                 "  z = 0.0, 0.1\n  nz = 1\n")
+    c.append(Case("mesh_box_minus_ball_bad",
+                  sub(box_group, "  type = 'box_minus_ball', radius = 0.5, length = 0.4,\n"
+                      "  n_patch = 0, radial_ratio = -1.0\n"),
+                  ["&mesh: length: must be > radius", "&mesh: n_patch: must be >= 1",
+                   "&mesh: radial_ratio: must be > 0"], min_errors=3))
+    c.append(Case("mesh_ball_bad",
+                  sub(box_group, "  type = 'ball', radius = 0.5, core_fraction = 0.7,\n"
+                      "  n_radial = 0, n_patch = 4\n"),
+                  ["&mesh: core_fraction: must be in [0.2, 0.5]",
+                   "&mesh: n_radial: must be >= 1", "&mesh: type: 'ball' takes radius"],
+                  min_errors=3))
     c.append(Case("mesh_nx_missing", sub("  nx = 10\n", ""),
                   ["&mesh: nx: required"]))
     c.append(Case("mesh_points_not_increasing", sub("  x = 0.0, 1.0\n", "  x = 1.0, 0.0\n"),

@@ -41,8 +41,11 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   walllimit --deck D --np A --restart-np B [--replace OLD NEW ...]
                                       &control wall_limit set to stop well before the end:
                                       the same checks, and the run stops before the limit
-  relative --deck D --reference R --problem P --key K --tol T [--max KEY=V] [--pair NAME]
-                                      contact run's K within (1 + T) of the reference's
+  relative --deck D --reference R --problem P --key K --tol T [--max KEY=V] [--min KEY=V]
+           [--pair NAME] [--energy-tol E] [--booked-pair NAME --momentum-tol M]
+                                      contact run's K within (1 + T) of the reference's;
+                                      optionally the energy balance and the momentum the
+                                      pair books
   impact   --deck D --pair NAME --tol T --max-pen P [--momentum-tol M --momentum-axes z]
                                       two bodies in contact: energy balance, penetration,
                                       momentum; final block velocities reported
@@ -584,8 +587,12 @@ def cmd_patch(args):
 def cmd_relative(args):
     """A contact run against its single-mesh reference (PROBLEMS.md D): the
     --key of compare.py (--problem) for --deck is at most (1 + --tol) times
-    the reference's (--reference); with --pair, the interface is in contact
-    on every cycle and never releases."""
+    the reference's (--reference); --max / --min bound other keys of the
+    contact run; with --pair, the interface is in contact on every cycle and
+    never releases; with --energy-tol, max |energy_error| (the balance that
+    books the contact work) is at most that; with --booked-pair and
+    --momentum-tol, the momentum that pair's forces added over the run (sum of
+    its dmom columns) is at most that fraction of the largest |momentum|."""
     import numpy as np
     wd_ref = os.path.join(args.workdir, "reference")
     wd = os.path.join(args.workdir, "contact")
@@ -606,7 +613,26 @@ def cmd_relative(args):
         value = got.get(k, float("nan"))
         check("contact run: %s = %.4e <= %s (reference %.4e)" % (k, value, v,
               ref.get(k, float("nan"))), value <= float(v))
+    for spec in args.min or []:
+        k, v = spec.split("=")
+        value = got.get(k, float("nan"))
+        check("contact run: %s = %.4e >= %s (reference %.4e)" % (k, value, v,
+              ref.get(k, float("nan"))), value >= float(v))
     report_contact_energy(wd)
+    if args.energy_tol > 0.0:
+        header, rows = read_history(wd)
+        worst = np.abs(rows[:, header.index("energy_error")]).max()
+        check("energy balance with the contact work booked: |error| %.2e <= %.1e"
+              % (worst, args.energy_tol), worst <= args.energy_tol)
+    if args.booked_pair and args.momentum_tol > 0.0:
+        header, rows = read_history(wd)
+        booked = np.array([rows[:, header.index(args.booked_pair + "_dmom_" + c)].sum()
+                           for c in "xyz"])
+        p = rows[:, [header.index("momentum_" + c) for c in "xyz"]]
+        scale = max(np.linalg.norm(p, axis=1).max(), 1e-300)
+        check("momentum booked by contact pair %s: |sum dmom| / max |p| %.2e <= %.1e"
+              % (args.booked_pair, np.linalg.norm(booked) / scale, args.momentum_tol),
+              np.linalg.norm(booked) / scale <= args.momentum_tol)
     if args.pair != "none":
         header, rows = read_history(wd)
         active = rows[:, header.index(args.pair + "_active")]
@@ -1033,6 +1059,9 @@ def main():
     p.add_argument("--final-left", type=float)
     p.add_argument("--final-right", type=float)
     p.add_argument("--momentum-tol", type=float, default=0.0)
+    p.add_argument("--booked-pair", default=None,
+                   help="relative: with --momentum-tol, check the momentum this contact "
+                        "pair books (sum of its dmom columns) against the largest |momentum|")
     p.add_argument("--momentum-axes", default="xyz",
                    help="impact: the momentum components no boundary acts on (a symmetry "
                         "plane's reaction changes the component along its normal)")
@@ -1042,7 +1071,8 @@ def main():
     p.add_argument("--all-dumps", action="store_true",
                    help="mirror: compare every dump of the two runs, not only the final one")
     p.add_argument("--energy-tol", type=float, default=0.0,
-                   help="mirror: largest |energy_error| of both runs (0: not checked)")
+                   help="mirror: largest |energy_error| of both runs; relative: of the "
+                        "contact run (0: not checked)")
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
     p.add_argument("--replace", nargs=2, action="append", metavar=("OLD", "NEW"),
                    help="signal, walllimit, bitwise: edit the deck text before running")

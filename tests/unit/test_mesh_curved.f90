@@ -1,4 +1,5 @@
-!> Curved-body generators (rod, tube, shell octant), each at two resolutions:
+!> Curved-body generators (rod, tube, shell octant, ball octant, box minus
+!> ball octant), each at two resolutions:
 !> positive volumes and scaled Jacobians, volume and set areas converging to
 !> the exact values at second order (flat faces on a curved surface: error
 !> ~ h^2), nodes exactly on their circle or sphere (1e-12 relative) and
@@ -10,8 +11,9 @@ program test_mesh_curved
   use core_status, only: status_t
   use mesh_geometry, only: hex_volume, quad_vector_area, HEX_FACE_NODES
   use mesh_global, only: global_mesh_t
-  use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t, mesh_make_rod, &
-      mesh_make_tube, mesh_make_shell_octant
+  use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t, ball_spec_t, &
+      box_minus_ball_spec_t, mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, &
+      mesh_make_ball_octant, mesh_make_box_minus_ball
   use check, only: check_true, check_close, check_summary
   implicit none
   real(rk), parameter :: PI = acos(-1.0_rk)
@@ -34,6 +36,8 @@ program test_mesh_curved
   call test_tube('quarter')
   call test_tube_placed()
   call test_shell()
+  call test_ball()
+  call test_box_minus_ball()
   call test_defaults()
   call test_bad_specs()
   call check_summary()
@@ -275,6 +279,96 @@ contains
     call mesh%free()
   end subroutine test_shell
 
+  !> Ball octant: volume pi R^3 / 6, sphere area pi R^2 / 2, quarter discs.
+  subroutine test_ball()
+    type(ball_spec_t) :: spec
+    type(global_mesh_t) :: mesh
+    type(status_t) :: status
+    real(rk) :: volume(2), outer(2), sym(2, 3), r, zero(3)
+    integer :: level, nc, nr, axis
+    character(len=*), parameter :: names(3) = ['xmin', 'ymin', 'zmin']
+    character(len=:), allocatable :: label
+
+    r = 0.7_rk
+    zero = 0.0_rk
+    do level = 1, 2
+      spec = ball_spec_t(radius=r, n_core=4 * level, n_radial=3 * level, radial_ratio=0.8_rk)
+      call mesh_make_ball_octant(spec, mesh, status)
+      label = 'ball level ' // digit(level)
+      call check_true(label // ': made', status%ok())
+      nc = spec%n_core
+      nr = spec%n_radial
+      call check_true(label // ': zones', mesh%nzone == nc**3 + 3 * nc * nc * nr)
+      call check_true(label // ': nodes', mesh%nnode == (nc + 1)**3 + (3 * (nc + 1)**2 &
+          - 3 * (nc + 1) + 1) * nr)
+      call check_true(label // ': sets', mesh%nset == 4)
+      volume(level) = check_mesh(label, mesh, r, quality=.true.)
+      outer(level) = set_area(mesh, 'outer')
+      call check_on_sphere(label // ': outer', mesh, 'outer', r)
+      call check_radial_outward(label // ': outer', mesh, 'outer', zero, zero, 1.0_rk)
+      do axis = 1, 3
+        call check_plane(label // ': ' // names(axis), mesh, names(axis), axis, 0.0_rk, &
+            -unit(axis))
+        sym(level, axis) = set_area(mesh, names(axis))
+      end do
+    end do
+    call check_order('ball volume', volume, PI / 6.0_rk * r**3)
+    call check_order('ball outer area', outer, 0.5_rk * PI * r**2)
+    do axis = 1, 3
+      call check_order('ball ' // names(axis) // ' area', sym(:, axis), 0.25_rk * PI * r**2)
+    end do
+    call mesh%free()
+  end subroutine test_ball
+
+  !> Box minus ball octant: volume L^3 - pi R^3 / 6, sphere area pi R^2 / 2,
+  !> outer faces L^2 exactly, symmetry faces L^2 - pi R^2 / 4.
+  subroutine test_box_minus_ball()
+    type(box_minus_ball_spec_t) :: spec
+    type(global_mesh_t) :: mesh
+    type(status_t) :: status
+    real(rk) :: volume(2), inner(2), sym(2, 3), r, length, zero(3)
+    integer :: level, np, axis
+    character(len=*), parameter :: lower(3) = ['xmin', 'ymin', 'zmin']
+    character(len=*), parameter :: upper(3) = ['xmax', 'ymax', 'zmax']
+    character(len=:), allocatable :: label
+
+    r = 0.5_rk
+    length = 1.2_rk
+    zero = 0.0_rk
+    do level = 1, 2
+      spec = box_minus_ball_spec_t(radius=r, length=length, n_patch=4 * level, &
+          n_radial=3 * level, radial_ratio=1.5_rk)
+      call mesh_make_box_minus_ball(spec, mesh, status)
+      label = 'box minus ball level ' // digit(level)
+      call check_true(label // ': made', status%ok())
+      np = spec%n_patch
+      call check_true(label // ': zones', mesh%nzone == 3 * np * np * spec%n_radial)
+      call check_true(label // ': nodes', mesh%nnode == (3 * (np + 1)**2 - 3 * (np + 1) + 1) &
+          * (spec%n_radial + 1))
+      call check_true(label // ': sets', mesh%nset == 7)
+      volume(level) = check_mesh(label, mesh, length, quality=.true.)
+      inner(level) = set_area(mesh, 'inner')
+      call check_on_sphere(label // ': inner', mesh, 'inner', r)
+      call check_radial_outward(label // ': inner', mesh, 'inner', zero, zero, -1.0_rk)
+      do axis = 1, 3
+        call check_plane(label // ': ' // lower(axis), mesh, lower(axis), axis, 0.0_rk, &
+            -unit(axis))
+        call check_plane(label // ': ' // upper(axis), mesh, upper(axis), axis, length, &
+            unit(axis))
+        call check_close(label // ': ' // upper(axis) // ' area', set_area(mesh, upper(axis)), &
+            length**2, FLAT_TOL)
+        sym(level, axis) = set_area(mesh, lower(axis))
+      end do
+    end do
+    call check_order('box minus ball volume', volume, length**3 - PI / 6.0_rk * r**3)
+    call check_order('box minus ball inner area', inner, 0.5_rk * PI * r**2)
+    do axis = 1, 3
+      call check_order('box minus ball ' // lower(axis) // ' area', sym(:, axis), &
+          length**2 - 0.25_rk * PI * r**2)
+    end do
+    call mesh%free()
+  end subroutine test_box_minus_ball
+
   !> Every generator at its default resolution: quality and volume.
   subroutine test_defaults()
     type(global_mesh_t) :: mesh
@@ -282,6 +376,8 @@ contains
     type(rod_spec_t) :: rod
     type(tube_spec_t) :: tube
     type(shell_spec_t) :: shell
+    type(ball_spec_t) :: ball
+    type(box_minus_ball_spec_t) :: box_minus_ball
     real(rk) :: volume
 
     call mesh_make_rod(rod, mesh, status)
@@ -296,6 +392,13 @@ contains
     call mesh_make_shell_octant(shell, mesh, status)
     volume = check_mesh('default shell', mesh, 10.0_rk, quality=.true.)
     call check_close('default shell: volume', volume, PI / 6.0_rk * 488.0_rk, 5.0e-3_rk)
+    call mesh_make_ball_octant(ball, mesh, status)
+    volume = check_mesh('default ball', mesh, 0.5_rk, quality=.true.)
+    call check_close('default ball: volume', volume, PI / 48.0_rk, 5.0e-3_rk)
+    call mesh_make_box_minus_ball(box_minus_ball, mesh, status)
+    volume = check_mesh('default box minus ball', mesh, 1.2_rk, quality=.true.)
+    call check_close('default box minus ball: volume', volume, 1.728_rk - PI / 48.0_rk, &
+        5.0e-3_rk)
     call check_true('defaults: made', status%ok())
     call mesh%free()
   end subroutine test_defaults
@@ -341,6 +444,26 @@ contains
     call check_true('bad shell: n_patch named', index(status%messages(2), 'shell: n_patch') == 1)
     call check_true('bad shell: radial_ratio named', &
         index(status%messages(3), 'shell: radial_ratio') == 1)
+    call status%clear()
+
+    call mesh_make_ball_octant(ball_spec_t(radius=0.0_rk, n_radial=0, core_fraction=0.6_rk), &
+        mesh, status)
+    call check_true('bad ball: three problems', status%count == 3)
+    call check_true('bad ball: radius named', index(status%messages(1), 'ball: radius') == 1)
+    call check_true('bad ball: n_radial named', index(status%messages(2), 'ball: n_radial') == 1)
+    call check_true('bad ball: core_fraction named', &
+        index(status%messages(3), 'ball: core_fraction') == 1)
+    call status%clear()
+
+    call mesh_make_box_minus_ball(box_minus_ball_spec_t(radius=1.0_rk, length=0.8_rk, &
+        n_patch=0, radial_ratio=-1.0_rk), mesh, status)
+    call check_true('bad box minus ball: three problems', status%count == 3)
+    call check_true('bad box minus ball: length named', &
+        index(status%messages(1), 'box_minus_ball: length') == 1)
+    call check_true('bad box minus ball: n_patch named', &
+        index(status%messages(2), 'box_minus_ball: n_patch') == 1)
+    call check_true('bad box minus ball: radial_ratio named', &
+        index(status%messages(3), 'box_minus_ball: radial_ratio') == 1)
   end subroutine test_bad_specs
 
   ! ------------------------------------------------------------- whole mesh
