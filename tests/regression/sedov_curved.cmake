@@ -7,22 +7,25 @@
 #
 # Medium mesh (problems/sedov_contact/sedov_curved_{dlm,dam}_b.nml, 22680
 # zones), measured on 2 ranks (problems/sedov_contact/README.md):
-#   DLM: L1(rho) 0.1046 = 0.71 x the single-mesh 30^3 run (0.1474), shock
+#   DLM: L1(rho) 0.1046 = 0.74 x the single-mesh 30^3 run (0.1413), shock
 #        +1.27%, max |energy_error| 1.2e-13, contact work -9.4e-4 E0, momentum
 #        booked by contact 0 to round-off;
-#   DAM: L1(rho) 0.0706 = 0.48 x, shock +0.77%, max |energy_error| 1.2e-13,
+#   DAM: L1(rho) 0.0706 = 0.50 x, shock +0.77%, max |energy_error| 1.2e-13,
 #        contact work -2.0e-2 E0.
 # Criteria: L1(rho) at most the single-mesh 30^3 run's (--tol 0: the split
 # mesh's spherical patches follow the shock, so the contact run must not be
-# worse than the Cartesian single mesh; DLM has 29% margin); shock radius
+# worse than the Cartesian single mesh; DLM has 26% margin); shock radius
 # within 2% of exact (the single-mesh criterion, both signs); the energy
 # balance that books the contact work closes to 1e-12 (round-off over about
 # 800 cycles, as energy/sedov_20); DLM: the momentum its forces add is zero to
 # 1e-12 of the largest |momentum|. Total momentum is not checked: the symmetry
 # planes take reactions. The interface is not asserted in contact on every
 # cycle (--pair none): before the shock the surfaces only touch, and nodes
-# are released where they do. Each run takes 45-55 s on 2 ranks (with the
-# single-mesh reference about 2 minutes), hence the label long.
+# are released where they do. Each test takes 70-80 s on 2 ranks (contact
+# run 45-55 s plus the single-mesh reference), hence the label long.
+# Known defect, not asserted: under DLM the ball's surface node on the
+# diagonal x = y = z runs ahead of the gas surface (0.12 at t = 1 on this
+# mesh, 0.49 on the fine one; see the README).
 foreach(m dlm dam)
   set(SEDOV_CURVED_MOMENTUM "")
   if(m STREQUAL "dlm")
