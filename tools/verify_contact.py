@@ -113,8 +113,11 @@ TUBE_V0 = -0.002                # cm/us, initial z velocity of tube b
 TUBE_B_BLOCK = 2
 MOMENTUM_ROUNDOFF = 1.0e-12     # DLM: contact books no momentum
 
-CONTACT_LINE = re.compile(r"impact3d: contact\s+([0-9.]+) s search,\s+([0-9.]+) s "
-                          r"enforcement \(\s*([0-9.]+)% of the loop")
+# "contact T s search and RCB, T s enforcement, T s migration (P% of the loop; ...)"
+# (older binaries: "contact T s search, T s enforcement (P% of the loop"); the
+# search column includes the RCB and the migration of the contact nodes.
+CONTACT_LINE = re.compile(r"impact3d: contact\s+([0-9.]+) s search(?: and RCB)?,\s+([0-9.]+) s "
+                          r"enforcement(?:,\s+([0-9.]+) s migration)?\s*\(\s*([0-9.]+)% of the loop")
 DONE_LINE = re.compile(r"impact3d: done, (\d+) cycles,\s+([0-9.]+) s")
 AL_TARGET_LINE = re.compile(r"axial stress ([-0-9.eE+]+) Mbar")
 AL_MEAN_LINE = re.compile(r"(\d+) dumps in .*: mean ([-0-9.eE+]+) Mbar \(min ([-0-9.eE+]+), "
@@ -148,8 +151,8 @@ def parse_timing(log_path):
         text = handle.read()
     match = CONTACT_LINE.search(text)
     if match:
-        out.update(search=float(match.group(1)), enforcement=float(match.group(2)),
-                   loop_pct=float(match.group(3)))
+        out.update(search=float(match.group(1)) + float(match.group(3) or 0.0),
+                   enforcement=float(match.group(2)), loop_pct=float(match.group(4)))
     match = DONE_LINE.search(text)
     if match:
         out.update(cycles=int(match.group(1)), total=float(match.group(2)))
