@@ -353,12 +353,7 @@ contains
     nr = spec%n_radial
     call interval_points(1, [spec%ri, spec%ro], [nr], [spec%radial_ratio], r)
     ! Tangents of the equiangular patch coordinates, exact at 0 and 1.
-    allocate(t(0:np))
-    do i = 0, np
-      t(i) = tan(0.25_rk * PI * real(i, rk) / real(np, rk))
-    end do
-    t(0) = 0.0_rk
-    t(np) = 1.0_rk
+    call patch_tangents(np, t)
     ! Patch 1 around x: (1, tan i, tan j); 2 around y: (tan i, 1, tan j);
     ! 3 around z: (tan i, tan j, 1).
     call block_new(blocks(1), np, np, nr, [INNER, OUTER, ZSYM, 0, 0, YSYM])
@@ -366,9 +361,7 @@ contains
     call block_new(blocks(3), np, np, nr, [INNER, OUTER, YSYM, 0, 0, XSYM])
     do j = 0, np
       do i = 0, np
-        d(:, 1) = [1.0_rk, t(i), t(j)]
-        d(:, 2) = [t(i), 1.0_rk, t(j)]
-        d(:, 3) = [t(i), t(j), 1.0_rk]
+        d = patch_directions(t(i), t(j))
         do patch = 1, 3
           d(:, patch) = d(:, patch) / sqrt(sum(d(:, patch)**2))
           do k = 0, nr
@@ -431,9 +424,7 @@ contains
     end do
     do j = 0, nc
       do i = 0, nc
-        d(:, 1) = [1.0_rk, t(i), t(j)]
-        d(:, 2) = [t(i), 1.0_rk, t(j)]
-        d(:, 3) = [t(i), t(j), 1.0_rk]
+        d = patch_directions(t(i), t(j))
         across = a * core_coordinate(i)
         core(:, 1) = [a, across, a * core_coordinate(j)]
         core(:, 2) = [across, a, a * core_coordinate(j)]
@@ -502,9 +493,7 @@ contains
     call block_new(blocks(3), np, np, nr, [INNER, ZMAX, YMIN, 0, 0, XMIN])
     do j = 0, np
       do i = 0, np
-        d(:, 1) = [1.0_rk, t(i), t(j)]
-        d(:, 2) = [t(i), 1.0_rk, t(j)]
-        d(:, 3) = [t(i), t(j), 1.0_rk]
+        d = patch_directions(t(i), t(j))
         do patch = 1, 3
           sphere = spec%radius * d(:, patch) / sqrt(sum(d(:, patch)**2))
           blocks(patch)%x(:, i, j, 0) = sphere
@@ -535,6 +524,16 @@ contains
     t(0) = 0.0_rk
     t(n) = 1.0_rk
   end subroutine patch_tangents
+
+  !> Unnormalised directions of the point (ti, tj) of the three equiangular
+  !> octant patches: around x (1, ti, tj), around y (ti, 1, tj), around z (ti, tj, 1).
+  pure function patch_directions(ti, tj) result(d)
+    real(rk), intent(in) :: ti, tj
+    real(rk) :: d(3, 3)
+    d(:, 1) = [1.0_rk, ti, tj]
+    d(:, 2) = [ti, 1.0_rk, tj]
+    d(:, 3) = [ti, tj, 1.0_rk]
+  end function patch_directions
 
   !> Allocate a block of n1 x n2 x n3 zones with the given face sets.
   subroutine block_new(block, n1, n2, n3, face_set)
