@@ -84,6 +84,12 @@ module contact_enforce
 
   !> Facets facing each other: n_a . n_b below this.
   real(rk), parameter :: FACING = -0.2_rk
+  !> DLM velocity form: default fraction of a facet pair's penetration removed
+  !> per step (see dlm_step).
+  real(rk), parameter :: DEFAULT_RECOVERY = 0.2_rk
+  !> Penetration a facet pair may keep without recovery, as a fraction of the
+  !> size (square root of the area) of the smaller of its two segments.
+  real(rk), parameter :: RECOVERY_ALLOWANCE = 0.02_rk
   !> Overlaps smaller than this fraction of the smaller facet's area are
   !> ignored: slivers between facets of neighbouring nodes that coincide in
   !> one projection but not in the slightly tilted common plane of another
@@ -131,6 +137,8 @@ contains
         case default
           p%form = FORM_VELOCITY
         end select
+        p%recovery = DEFAULT_RECOVERY
+        if (specs(k)%recovery >= 0.0_rk) p%recovery = specs(k)%recovery
         ! For DAM, b is the master side.
         slave_set = specs(k)%surface_a
         master_set = specs(k)%surface_b
@@ -495,6 +503,7 @@ contains
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, wh, wd, t1(3), t2(3), origin(3)
+    real(rk) :: allowance
     real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT), seg_a(4), seg_b(4)
     real(rk) :: a2(2, 3, SEGMENT_FACET_COUNT), b2(2, 3, SEGMENT_FACET_COUNT), centre2(2)
     integer :: m, sa, sb, i, j, nodeh, noded
@@ -503,7 +512,7 @@ contains
     call geometry_update(ct%x, p%a, p%ga)
     call geometry_update(ct%x, p%b, p%gb)
     p%nfp = 0
-    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(7, 64), p%fp_key(64))
+    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(8, 64), p%fp_key(64))
     associate(ga => p%ga, gb => p%gb)
       do m = 1, size(p%segment_pairs, 2)
         sa = p%segment_pairs(1, m)
@@ -557,7 +566,12 @@ contains
             end if
             ! Deeper than half a segment: the far side of a body, not contact.
             if (pen > 0.5_rk * p%size) cycle
+            ! Penetration beyond a small fraction of the segments' size, for
+            ! the recovery of the velocity form (below it: the mismatch of
+            ! two faceted versions of one curved surface, left alone).
+            allowance = RECOVERY_ALLOWANCE * sqrt(min(sum(ga%area(:, sa)), sum(gb%area(:, sb))))
             call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, &
+                max(pen - allowance, 0.0_rk), &
                 p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8))
           end do
         end do
@@ -566,16 +580,17 @@ contains
   end subroutine dlm_geometry
 
   !> Append one facet pair to the interface's cache, growing it when full.
-  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, key)
+  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, excess, key)
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: nodeh, noded
     real(rk), intent(in) :: wh, wd, pen, s0, nrm(3)
+    real(rk), intent(in) :: excess !< penetration beyond the recovery allowance (>= 0)
     integer(i8), intent(in) :: key !< global order: segment pair, facet of a, facet of b
     integer, allocatable :: grown_node(:, :)
     integer(i8), allocatable :: grown_key(:)
     real(rk), allocatable :: grown_real(:, :)
     if (p%nfp == size(p%fp_node, 2)) then
-      allocate(grown_node(2, 2 * p%nfp), grown_real(7, 2 * p%nfp), grown_key(2 * p%nfp))
+      allocate(grown_node(2, 2 * p%nfp), grown_real(8, 2 * p%nfp), grown_key(2 * p%nfp))
       grown_node(:, :p%nfp) = p%fp_node(:, :p%nfp)
       grown_real(:, :p%nfp) = p%fp_real(:, :p%nfp)
       grown_key(:p%nfp) = p%fp_key(:p%nfp)
@@ -585,7 +600,7 @@ contains
     end if
     p%nfp = p%nfp + 1
     p%fp_node(:, p%nfp) = [nodeh, noded]
-    p%fp_real(:, p%nfp) = [wh, wd, pen, s0, nrm]
+    p%fp_real(:, p%nfp) = [wh, wd, pen, s0, nrm, excess]
     p%fp_key(p%nfp) = key
   end subroutine add_facet_pair
 
@@ -638,7 +653,7 @@ contains
             fh = mu * (fd_ / md - fh_ / mh - w / (0.5_rk * dt) - pen / (0.5_rk * dt * dt))
           case (FORM_VELOCITY)
             fh = 0.0_rk
-            if (gated(q)) fh = mu * (fd_ / md - fh_ / mh - w / dt)
+            if (gated(q)) fh = mu * (fd_ / md - fh_ / mh + (recovery_speed(q) - w) / dt)
           case default
             fh = 0.0_rk
             if (gated(q)) then
@@ -652,7 +667,8 @@ contains
           ! Residual approach at t^n+1 with every contact force so far.
           fh_ = dot_product(ct%f(:, nodeh) + fc(:, nodeh), nrm) * wh
           fd_ = dot_product(ct%f(:, noded) + fc(:, noded), nrm) * wd
-          fh = min(lambda(q) + mu * (fd_ / md - fh_ / mh - w / dt), 0.0_rk)
+          fh = min(lambda(q) + mu * (fd_ / md - fh_ / mh + (recovery_speed(q) - w) / dt), &
+              0.0_rk)
         end if
         if (fh == lambda(q)) cycle
         fc(:, nodeh) = fc(:, nodeh) + (fh - lambda(q)) * nrm
@@ -696,6 +712,16 @@ contains
     do i = 1, ct%ncn
       p%partial(6:8) = p%partial(6:8) + fc(:, i)
     end do
+  contains
+
+    !> Target approach speed of facet pair q in the velocity form: the
+    !> separation that removes the fraction p%recovery of its penetration at
+    !> t^n over the step (0 for a gap).
+    pure real(rk) function recovery_speed(q) result(speed)
+      integer, intent(in) :: q
+      speed = -p%recovery * p%fp_real(8, q) / dt
+    end function recovery_speed
+
   end subroutine dlm_step
 
   !> DAM geometry at x^n (once per cycle, in the predictor; both stages use

@@ -41,6 +41,9 @@ module contact_state
     real(rk) :: search_margin = 0.0_rk !< territory margin (0 = automatic)
     integer :: search_every = 0 !< cycles between global searches (0 = automatic)
     integer :: sweeps = 1 !< DLM: Gauss-Seidel sweeps of the pair forces (1 = one pass)
+    !> DLM velocity form: fraction of a facet pair's penetration at t^n
+    !> removed over the step (Baumgarte-type position feedback; 0 = none)
+    real(rk) :: recovery = -1.0_rk
   end type contact_spec_t
 
   !> Geometry of one surface at x^n, computed once per cycle (in the
@@ -58,6 +61,7 @@ module contact_state
     type(contact_spec_t), public :: spec
     integer :: method = METHOD_DLM
     integer :: form = FORM_VELOCITY
+    real(rk) :: recovery = 0.0_rk !< DLM velocity form: penetration fraction removed per step
     logical :: self = .false.
     logical :: single_part = .false. !< every pair on part 0 (DLM sweeps > 1)
     type(contact_surface_t) :: all_a, all_b !< whole surfaces, contact index (b = master for DAM)
@@ -74,7 +78,7 @@ module contact_state
     integer :: nfp = 0 !< DLM facet pairs of the cycle
     integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
     integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
-    real(rk), allocatable :: fp_real(:, :) !< (7, nfp) shares wh, wd, pen, s0, normal
+    real(rk), allocatable :: fp_real(:, :) !< (8, nfp) shares wh, wd, pen, s0, normal, excess
     type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
     type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
     real(rk), allocatable :: rbf(:, :) !< DAM: (4, nprimary) put-back weights

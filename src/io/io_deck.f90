@@ -128,7 +128,7 @@ contains
     case ('contact')
       keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
           'capture', 'penetration_warning', 'search_margin', 'search_every', 'form', &
-          'sweeps']
+          'sweeps', 'recovery']
     case default
       allocate(keys(0))
     end select
@@ -1002,12 +1002,12 @@ contains
     character(len=NAME_LEN) :: name, master
     character(len=SURFACE_LEN) :: surface_a, surface_b
     character(len=16) :: method, form
-    real(rk) :: capture, penetration_warning, search_margin
+    real(rk) :: capture, penetration_warning, search_margin, recovery
     integer :: search_every, sweeps, ios
     character(len=256) :: msg
     character(len=16) :: where
     namelist /contact/ name, surface_a, surface_b, method, master, capture, &
-        penetration_warning, search_margin, search_every, form, sweeps
+        penetration_warning, search_margin, search_every, form, sweeps, recovery
 
     write(where, '(a,i0,a)') '&contact(', index, ')'
     name = ''
@@ -1020,6 +1020,7 @@ contains
     search_margin = pair%search_margin
     search_every = pair%search_every
     sweeps = pair%sweeps
+    recovery = pair%recovery
     form = ''
     read(sect, nml=contact, iostat=ios, iomsg=msg)
     if (ios /= 0) then
@@ -1074,6 +1075,13 @@ contains
     pair%search_every = search_every
     if (sweeps < 1) call status%add(trim(where)//': sweeps: must be >= 1')
     pair%sweeps = sweeps
+    if (recovery /= pair%recovery) then
+      if (.not. (recovery >= 0.0_rk .and. recovery <= 0.5_rk)) call status%add(trim(where)// &
+          ': recovery: must be in [0, 0.5] (fraction of the penetration removed per step)')
+      if (to_lower(method) == 'dam' .or. .not. (form == '' .or. to_lower(form) == 'velocity')) &
+          call status%add(trim(where)//': recovery: only for the DLM velocity form')
+    end if
+    pair%recovery = recovery
   end subroutine read_contact
 
   subroutine read_output(sect, out, status)

@@ -43,9 +43,11 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
                                       the same checks, and the run stops before the limit
   relative --deck D --reference R --problem P --key K --tol T [--max KEY=V] [--min KEY=V]
            [--pair NAME] [--energy-tol E] [--booked-pair NAME --momentum-tol M]
+           [--radial-penetration INNER OUTER RADIUS MAX]
                                       contact run's K within (1 + T) of the reference's;
-                                      optionally the energy balance and the momentum the
-                                      pair books
+                                      optionally the energy balance, the momentum the
+                                      pair books and the penetration across a curved
+                                      interface
   impact   --deck D --pair NAME --tol T --max-pen P [--momentum-tol M --momentum-axes z]
                                       two bodies in contact: energy balance, penetration,
                                       momentum; final block velocities reported
@@ -642,6 +644,14 @@ def cmd_relative(args):
         check("no node released (%d)" % released.sum(), released.sum() == 0)
         pen = rows[:, header.index(args.pair + "_pen_max")]
         print("largest penetration %.3e" % pen.max())
+    if args.radial_penetration:
+        import radial_gap
+        inner, outer, radius, limit = args.radial_penetration
+        rows = radial_gap.history(wd, int(inner), int(outer), float(radius))
+        time, worst, direction = max(rows, key=lambda row: row[1])
+        check("curved interface: largest radial penetration %.3e (t = %.3f, direction %s) "
+              "<= %s" % (worst, time, np.array2string(direction, precision=3), limit),
+              worst <= float(limit))
 
 
 def report_contact_energy(workdir):
@@ -1066,6 +1076,10 @@ def main():
                    help="impact: the momentum components no boundary acts on (a symmetry "
                         "plane's reaction changes the component along its normal)")
     p.add_argument("--max-pen", type=float, default=float("inf"))
+    p.add_argument("--radial-penetration", nargs=4, metavar=("INNER", "OUTER", "RADIUS", "MAX"),
+                   help="relative: in every dump, no node of block INNER on the sphere RADIUS "
+                        "(at t = 0) lies more than MAX radially beyond the faceted surface of "
+                        "block OUTER (tools/radial_gap.py)")
     p.add_argument("--sym-tol", type=float, default=None,
                    help="mirror: tolerance of the image's symmetry (default: --tol)")
     p.add_argument("--all-dumps", action="store_true",
