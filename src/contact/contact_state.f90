@@ -141,6 +141,9 @@ module contact_state
     real(rk) :: balance_worst = 0.0_rk !< the largest of these ratios
     integer :: ncn_max = 0 !< largest local set of this rank so far
     real(rk) :: search_seconds = 0.0_rk, enforce_seconds = 0.0_rk, migrate_seconds = 0.0_rk
+    !> time in the first collective of each call: waiting for the slowest rank's
+    !> hydro (load imbalance), kept out of the contact times
+    real(rk) :: wait_seconds = 0.0_rk
     type(records_t) :: kept(3) !< record buffers (DLM, DAM exchange, DAM put-back) between stages
   end type contact_t
 
