@@ -163,6 +163,14 @@ def build_cases():
                   append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam', "
                          "form = 'velocity' /\n"),
                   ["&contact(1): form: only DLM has forms"]))
+    c.append(Case("contact_recovery_range",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
+                         "recovery = 0.8 /\n"),
+                  ["&contact(1): recovery: must be in [0, 0.5]"]))
+    c.append(Case("contact_recovery_for_combined",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
+                         "form = 'combined', recovery = 0.1 /\n"),
+                  ["&contact(1): recovery: only for the DLM velocity form"]))
     c.append(Case("mesh_parts_need_names",
                   append("&mesh x = 2.0, 3.0, nx = 2, y = 0.0, 1.0, ny = 1, z = 0.0, 1.0, "
                          "nz = 1 /\n"),
