@@ -151,6 +151,7 @@ contains
           p%form = FORM_VELOCITY
         end select
         p%recovery = DEFAULT_RECOVERY
+        p%slave_normal = specs(k)%normal == 'slave'
         if (specs(k)%recovery >= 0.0_rk) p%recovery = specs(k)%recovery
         ! For DAM, b is the master side.
         slave_set = specs(k)%surface_a
@@ -768,6 +769,7 @@ contains
         do k = 1, 4
           pos(:, k) = ct%x(:, p%b%segments(k, p%primary(q)%segment))
         end do
+        if (p%slave_normal) call use_slave_normal(p%a, gs, n, p%primary(q)%normal)
         call rbf_weights(pos, ct%x(:, n), p%primary(q)%normal, p%rbf(:, q), ok)
         if (.not. ok) call bilinear_shape(p%primary(q)%xi, p%primary(q)%eta, p%rbf(:, q))
         call master_neighbourhood(p%b, p%primary(q)%segment, candidates, ncand)
@@ -822,6 +824,33 @@ contains
     end subroutine add_exchange
 
   end subroutine dam_geometry
+
+  !> DAM with normal = 'slave': the contact normal of slave node n becomes the
+  !> reverse of its own area-weighted normal (its facets on the slave
+  !> surface), kept only where it faces the master (normal . ns < 0). The
+  !> slave's hydro force is the pressure on those facets, so the constraint
+  !> along that normal leaves no tangential part of it to drive the node
+  !> along the interface; with the master facet's normal, on non-matching
+  !> curved meshes the mismatch angle (about h/R) leaves a tangential
+  !> pressure force that slides slave nodes and shears their zones.
+  pure subroutine use_slave_normal(slave, gs, n, normal)
+    type(contact_surface_t), intent(in) :: slave
+    type(surface_geometry_t), intent(in) :: gs
+    integer, intent(in) :: n !< the slave node (local contact index)
+    real(rk), intent(inout) :: normal(3) !< the master's normal at the projection
+    real(rk) :: ns(3)
+    integer :: k, e, s, c, i
+    ns = 0.0_rk
+    k = surface_node_index(slave, int(n, ik))
+    do e = slave%node_start(k), slave%node_start(k + 1) - 1
+      s = slave%node_segments(e)
+      c = findloc(slave%segments(:, s), n, dim=1)
+      do i = 2 * c - 1, 2 * c
+        ns = ns + gs%area(i, s) * gs%normal(:, i, s)
+      end do
+    end do
+    if (norm2(ns) > 0.0_rk .and. dot_product(ns, normal) < 0.0_rk) normal = -ns / norm2(ns)
+  end subroutine use_slave_normal
 
   !> DAM at the parts, first round: which slave nodes are enforced, and the
   !> exchange of mass, force and momentum over the facet overlaps of each

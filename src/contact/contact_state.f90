@@ -35,6 +35,7 @@ module contact_state
     character(len=SURFACE_LEN) :: surface_b = '' !< face sets (= surface_a: self-contact)
     character(len=8) :: method = '' !< 'dam' or 'dlm'
     character(len=1) :: master = 'b' !< DAM master side
+    character(len=8) :: normal = 'master' !< DAM: contact normal of a slave, 'master' or 'slave'
     character(len=12) :: form = 'velocity' !< DLM: coordinate, velocity, combined
     real(rk) :: capture = 0.0_rk !< largest open gap treated as contact (0 = automatic)
     real(rk) :: penetration_warning = huge(1.0_rk) !< warn above this penetration
@@ -61,6 +62,7 @@ module contact_state
     type(contact_spec_t), public :: spec
     integer :: method = METHOD_DLM
     integer :: form = FORM_VELOCITY
+    logical :: slave_normal = .false. !< DAM: the slave node's own normal (deck normal = 'slave')
     real(rk) :: recovery = 0.0_rk !< DLM velocity form: penetration fraction removed per step
     logical :: self = .false.
     logical :: single_part = .false. !< every pair on part 0 (DLM sweeps > 1)

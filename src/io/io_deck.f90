@@ -128,7 +128,7 @@ contains
     case ('contact')
       keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
           'capture', 'penetration_warning', 'search_margin', 'search_every', 'form', &
-          'sweeps', 'recovery']
+          'sweeps', 'recovery', 'normal']
     case default
       allocate(keys(0))
     end select
@@ -1001,13 +1001,13 @@ contains
     type(status_t), intent(inout) :: status
     character(len=NAME_LEN) :: name, master
     character(len=SURFACE_LEN) :: surface_a, surface_b
-    character(len=16) :: method, form
+    character(len=16) :: method, form, normal
     real(rk) :: capture, penetration_warning, search_margin, recovery
     integer :: search_every, sweeps, ios
     character(len=256) :: msg
     character(len=16) :: where
     namelist /contact/ name, surface_a, surface_b, method, master, capture, &
-        penetration_warning, search_margin, search_every, form, sweeps, recovery
+        penetration_warning, search_margin, search_every, form, sweeps, recovery, normal
 
     write(where, '(a,i0,a)') '&contact(', index, ')'
     name = ''
@@ -1022,6 +1022,7 @@ contains
     sweeps = pair%sweeps
     recovery = pair%recovery
     form = ''
+    normal = ''
     read(sect, nml=contact, iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(trim(where)//': cannot read the group: '//trim(msg))
@@ -1061,6 +1062,16 @@ contains
     case default
       call status%add(trim(where)//': form: '''//trim(form)//''' is not a DLM form (valid: '// &
           'coordinate, velocity, combined)')
+    end select
+    select case (to_lower(normal))
+    case ('')
+    case ('master', 'slave')
+      pair%normal = to_lower(normal)
+      if (to_lower(method) == 'dlm') call status%add(trim(where)//': normal: only for DAM '// &
+          '(DLM uses the common normal of each segment pair)')
+    case default
+      call status%add(trim(where)//': normal: '''//trim(normal)//''' is not a DAM normal '// &
+          '(valid: master, slave)')
     end select
     if (.not. (capture >= 0.0_rk)) call status%add(trim(where)//': capture: must be >= 0')
     if (.not. (penetration_warning > 0.0_rk)) call status%add(trim(where)// &

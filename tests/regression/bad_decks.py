@@ -171,6 +171,14 @@ def build_cases():
                   append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
                          "form = 'combined', recovery = 0.1 /\n"),
                   ["&contact(1): recovery: only for the DLM velocity form"]))
+    c.append(Case("contact_normal_for_dlm",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
+                         "normal = 'slave' /\n"),
+                  ["&contact(1): normal: only for DAM"]))
+    c.append(Case("contact_normal_unknown",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam', "
+                         "normal = 'average' /\n"),
+                  ["&contact(1): normal: 'average' is not a DAM normal"]))
     c.append(Case("mesh_parts_need_names",
                   append("&mesh x = 2.0, 3.0, nx = 2, y = 0.0, 1.0, ny = 1, z = 0.0, 1.0, "
                          "nz = 1 /\n"),
