@@ -551,6 +551,10 @@ contains
         call segment_box(ct%x, p%a%segments(:, sa), origin, t1, t2, seg_a)
         call segment_box(ct%x, p%b%segments(:, sb), origin, t1, t2, seg_b)
         if (.not. boxes_meet(seg_a, seg_b)) cycle
+        ! Penetration beyond a small fraction of the segments' size is what
+        ! the velocity form's recovery removes (below it: the mismatch of two
+        ! faceted versions of one curved surface, left alone).
+        allowance = RECOVERY_ALLOWANCE * sqrt(min(sum(ga%area(:, sa)), sum(gb%area(:, sb))))
         call project_facets(ga%facets(:, :, :, sa), origin, t1, t2, a2, box_a)
         call project_facets(gb%facets(:, :, :, sb), origin, t1, t2, b2, box_b)
         do i = 1, SEGMENT_FACET_COUNT
@@ -581,10 +585,6 @@ contains
             end if
             ! Deeper than half a segment: the far side of a body, not contact.
             if (pen > 0.5_rk * p%size) cycle
-            ! Penetration beyond a small fraction of the segments' size, for
-            ! the recovery of the velocity form (below it: the mismatch of
-            ! two faceted versions of one curved surface, left alone).
-            allowance = RECOVERY_ALLOWANCE * sqrt(min(sum(ga%area(:, sa)), sum(gb%area(:, sb))))
             call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, &
                 max(pen - allowance, 0.0_rk), &
                 p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8))
