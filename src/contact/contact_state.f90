@@ -43,7 +43,8 @@ module contact_state
     integer :: search_every = 0 !< cycles between global searches (0 = automatic)
     integer :: sweeps = 1 !< DLM: Gauss-Seidel sweeps of the pair forces (1 = one pass)
     !> DLM velocity form: fraction of a facet pair's penetration at t^n
-    !> removed over the step (Baumgarte-type position feedback; 0 = none)
+    !> removed over the step (Baumgarte-type position feedback; 0 = none;
+    !> negative = not given in the deck: the default of contact_enforce)
     real(rk) :: recovery = -1.0_rk
   end type contact_spec_t
 
