@@ -1,0 +1,485 @@
+!> Penetration audit: the signed distance of surface nodes to the opposite
+!> body's faceted surface, from geometry alone. It shares nothing with the
+!> search or the enforcement (no pairs, no capture, no depth cut-off, no
+!> facing cut), so it sees nodes that the contact dropped or never held.
+!> Plain arrays, no MPI, no I/O.
+!>
+!> Faceting. Each quadrilateral segment (corners P1..P4, counter-clockwise
+!> about the outward normal, centre C = mean of the corners) is the four flat
+!> triangles T_k = (P_k, P_k+1, C). This is the surface of the contact
+!> module's eight facets (their mid-edge points lie in these triangles) and of
+!> tools/radial_gap.py.
+!>
+!> Sign. The closest point q of the faceted surface to a node p lies in a
+!> triangle's interior, on an edge or at a vertex. The sign of (p - q) . N,
+!> N the angle-weighted pseudo-normal of that feature (a face's normal; the
+!> sum of the two normals across an edge; the sum of the incident
+!> triangles' normals, each weighted by its angle at a vertex), tells inside
+!> from outside exactly for a closed manifold surface (Baerentzen & Aanaes,
+!> IEEE TVCG 11 (2005) 243-253). A contact surface is often open (a face set
+!> of a body): where q lies on its free boundary and p - q leaves the
+!> surface's extent sideways (a component along the surface beyond
+!> LATERAL_FRACTION of the segment size), the node is beside the surface, not
+!> behind it, and counts as outside. The unit test checks the sign against a
+!> brute-force winding number on closed surfaces.
+!>
+!> Self-contact. A node lies on its own surface, so the segments within two
+!> rings of it are not candidates, and a node counts as inside only where
+!> the feature faces it (its own area-weighted normal . N < 0): two folds of
+!> one surface meet face to face, while a smooth stretch of surface curving
+!> away from the node does not.
+!>
+!> Reach. Only segments whose box comes within `reach` of a node are
+!> candidates (a bucket grid); a node with none gets gap = +reach. A node
+!> deeper than `reach` inside the other body is not seen; the callers take
+!> reach as a few segment sizes.
+!>
+!> Tolerance (see node_tolerance): the larger of 5% of the smaller of the
+!> node's adjacent segments and the opposite segment, and the opposite
+!> segment's faceting sagitta, the distance by which two faceted versions of
+!> one curved surface overlap by geometry alone.
+module contact_audit
+  use core_kinds, only: rk, ik
+  use contact_surface, only: contact_surface_t, surface_node_index
+  implicit none
+  private
+  public :: audit_gaps, segment_metrics, closest_on_triangle, node_tolerance
+  public :: FEATURE_FACE, SIZE_FRACTION
+
+  !> Feature of a triangle (a, b, c) holding the closest point.
+  integer, parameter :: FEATURE_FACE = 0 !< 1, 2, 3: edges ab, bc, ca; 4, 5, 6: vertices a, b, c
+  !> Default tolerance: this fraction of the smaller adjacent segment's size.
+  real(rk), parameter :: SIZE_FRACTION = 0.05_rk
+  !> A closest point on a free boundary with a sideways offset beyond this
+  !> fraction of the segment size is beside the surface (outside).
+  real(rk), parameter :: LATERAL_FRACTION = 1.0e-3_rk
+  !> Largest number of grid cells along one axis.
+  integer, parameter :: MAX_CELLS = 64
+
+contains
+
+  pure function cross(a, b) result(c)
+    real(rk), intent(in) :: a(3), b(3)
+    real(rk) :: c(3)
+    c(1) = a(2) * b(3) - a(3) * b(2)
+    c(2) = a(3) * b(1) - a(1) * b(3)
+    c(3) = a(1) * b(2) - a(2) * b(1)
+  end function cross
+
+  !> Closest point q of triangle (a, b, c) to p and the feature holding it:
+  !> FEATURE_FACE, 1..3 the edges ab, bc, ca, 4..6 the vertices a, b, c. The
+  !> regions follow from the signs of the barycentric coordinates of the
+  !> projection and of the edge parameters (Voronoi regions of the triangle).
+  pure subroutine closest_on_triangle(p, a, b, c, q, feature)
+    real(rk), intent(in) :: p(3), a(3), b(3), c(3)
+    real(rk), intent(out) :: q(3)
+    integer, intent(out) :: feature
+    real(rk) :: ab(3), ac(3), d1, d2, d3, d4, d5, d6, va, vb, vc, t, den
+
+    ab = b - a
+    ac = c - a
+    d1 = dot_product(ab, p - a)
+    d2 = dot_product(ac, p - a)
+    if (d1 <= 0.0_rk .and. d2 <= 0.0_rk) then
+      q = a
+      feature = 4
+      return
+    end if
+    d3 = dot_product(ab, p - b)
+    d4 = dot_product(ac, p - b)
+    if (d3 >= 0.0_rk .and. d4 <= d3) then
+      q = b
+      feature = 5
+      return
+    end if
+    vc = d1 * d4 - d3 * d2
+    if (vc <= 0.0_rk .and. d1 >= 0.0_rk .and. d3 <= 0.0_rk) then
+      t = d1 / (d1 - d3)
+      q = a + t * ab
+      feature = 1
+      return
+    end if
+    d5 = dot_product(ab, p - c)
+    d6 = dot_product(ac, p - c)
+    if (d6 >= 0.0_rk .and. d5 <= d6) then
+      q = c
+      feature = 6
+      return
+    end if
+    vb = d5 * d2 - d1 * d6
+    if (vb <= 0.0_rk .and. d2 >= 0.0_rk .and. d6 <= 0.0_rk) then
+      t = d2 / (d2 - d6)
+      q = a + t * ac
+      feature = 3
+      return
+    end if
+    va = d3 * d6 - d5 * d4
+    if (va <= 0.0_rk .and. d4 - d3 >= 0.0_rk .and. d5 - d6 >= 0.0_rk) then
+      t = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+      q = b + t * (c - b)
+      feature = 2
+      return
+    end if
+    den = va + vb + vc
+    if (.not. den > 0.0_rk) then
+      ! Degenerate triangle: its first vertex.
+      q = a
+      feature = 4
+      return
+    end if
+    q = a + (vb / den) * ab + (vc / den) * ac
+    feature = FEATURE_FACE
+  end subroutine closest_on_triangle
+
+  !> Per segment: size (square root of the area of its four triangles),
+  !> faceting sagitta, and the unit normals and centres of its triangles.
+  !> Sagitta: with kappa the largest turn of the segment normal per unit
+  !> distance between centres across its edges (theta / |C_s - C_t|), a
+  !> surface of that curvature through the corners bulges from the flat
+  !> facets by up to kappa L^2 / 8 at the centre, L the longer diagonal
+  !> (exact for a sphere: h^2 / (4 R) for a square of side h).
+  pure subroutine segment_metrics(x, surf, size, sagitta, tri_normal, centre)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    real(rk), intent(out) :: size(:), sagitta(:) !< (nseg)
+    real(rk), intent(out) :: tri_normal(:, :, :) !< (3, 4, nseg)
+    real(rk), intent(out) :: centre(:, :) !< (3, nseg)
+    real(rk) :: p(3, 4), a(3), qn(3, surf%nseg), area, kappa, theta, dist, diag
+    integer :: s, k, t
+
+    do s = 1, surf%nseg
+      p = x(:, surf%segments(:, s))
+      centre(:, s) = 0.25_rk * (((p(:, 1) + p(:, 2)) + p(:, 3)) + p(:, 4))
+      area = 0.0_rk
+      qn(:, s) = 0.0_rk
+      do k = 1, 4
+        a = cross(p(:, mod(k, 4) + 1) - p(:, k), centre(:, s) - p(:, k))
+        area = area + 0.5_rk * norm2(a)
+        qn(:, s) = qn(:, s) + a
+        tri_normal(:, k, s) = 0.0_rk
+        if (norm2(a) > 0.0_rk) tri_normal(:, k, s) = a / norm2(a)
+      end do
+      if (norm2(qn(:, s)) > 0.0_rk) qn(:, s) = qn(:, s) / norm2(qn(:, s))
+      size(s) = sqrt(area)
+    end do
+    do s = 1, surf%nseg
+      p = x(:, surf%segments(:, s))
+      kappa = 0.0_rk
+      do k = 1, 4
+        t = surf%neighbours(k, s)
+        if (t == 0) cycle
+        dist = norm2(centre(:, t) - centre(:, s))
+        if (.not. dist > 0.0_rk) cycle
+        theta = atan2(norm2(cross(qn(:, s), qn(:, t))), dot_product(qn(:, s), qn(:, t)))
+        kappa = max(kappa, theta / dist)
+      end do
+      diag = max(norm2(p(:, 3) - p(:, 1)), norm2(p(:, 4) - p(:, 2)))
+      sagitta(s) = 0.125_rk * kappa * diag**2
+    end do
+  end subroutine segment_metrics
+
+  !> Default penetration tolerance of a node: the larger of SIZE_FRACTION of
+  !> the smaller of its own smallest adjacent segment (own_size) and the
+  !> opposite segment (opp_size), and the opposite segment's sagitta.
+  pure real(rk) function node_tolerance(own_size, opp_size, opp_sagitta) result(tol)
+    real(rk), intent(in) :: own_size, opp_size, opp_sagitta
+    tol = max(SIZE_FRACTION * min(own_size, opp_size), opp_sagitta)
+  end function node_tolerance
+
+  !> Signed distances of the selected nodes of `own` to the faceted surface
+  !> `target` (> 0 outside the target's body, < 0 inside), with the segment
+  !> of the closest point (0: none within reach, gap = reach). x is indexed
+  !> by the node numbers of both surfaces. self: own and target are one
+  !> surface (self-contact rules above). Deterministic: the candidates of a
+  !> node are taken in ascending segment order, ties to the lower segment.
+  subroutine audit_gaps(x, own, target, self, reach, selected, gap, hit, inward)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: own, target
+    logical, intent(in) :: self
+    real(rk), intent(in) :: reach
+    logical, intent(in) :: selected(:) !< (own%nnode) nodes to audit
+    real(rk), intent(out) :: gap(:) !< (own%nnode), reach where not selected
+    integer, intent(out) :: hit(:) !< (own%nnode)
+    real(rk), intent(out) :: inward(:, :) !< (3, own%nnode) unit direction p -> q where inside
+    real(rk), allocatable :: tsize(:), tsag(:), tn(:, :, :), tc(:, :)
+    integer, allocatable :: cell_start(:), cell_list(:), stamp(:), cand(:), ring(:)
+    real(rk) :: lo(3), hi(3), cell, p(3), q(3), best_q(3), d2, best_d2, nrm(3), own_n(3), d(3)
+    integer :: ncell(3), i, s, k, ncand, best_s, best_k, best_f, f, c1(3), c2(3), ix, iy, iz, &
+        j, node, e, m
+    logical :: inside
+
+    gap = reach
+    hit = 0
+    inward = 0.0_rk
+    if (target%nseg == 0 .or. own%nnode == 0) return
+    allocate(tsize(target%nseg), tsag(target%nseg), tn(3, 4, target%nseg), &
+        tc(3, target%nseg))
+    call segment_metrics(x, target, tsize, tsag, tn, tc)
+    call build_grid()
+    allocate(stamp(target%nseg), cand(target%nseg), ring(target%nseg))
+    stamp = 0
+    ring = 0
+    do i = 1, own%nnode
+      if (.not. selected(i)) cycle
+      node = own%nodes(i)
+      p = x(:, node)
+      if (self) call mark_rings(i)
+      ! Candidates: segments in the cells within reach, ascending.
+      c1 = cell_of(p - reach)
+      c2 = cell_of(p + reach)
+      ncand = 0
+      do iz = c1(3), c2(3)
+        do iy = c1(2), c2(2)
+          do ix = c1(1), c2(1)
+            j = ix + ncell(1) * ((iy - 1) + ncell(2) * (iz - 1))
+            do e = cell_start(j), cell_start(j + 1) - 1
+              s = cell_list(e)
+              if (stamp(s) == i) cycle
+              stamp(s) = i
+              if (self .and. ring(s) == i) cycle
+              ncand = ncand + 1
+              cand(ncand) = s
+            end do
+          end do
+        end do
+      end do
+      call sort_ints(cand(:ncand))
+      best_d2 = reach**2
+      best_s = 0
+      best_k = 0
+      best_f = 0
+      best_q = p
+      do m = 1, ncand
+        s = cand(m)
+        do k = 1, 4
+          call closest_on_triangle(p, x(:, target%segments(k, s)), &
+              x(:, target%segments(mod(k, 4) + 1, s)), tc(:, s), q, f)
+          d2 = sum((p - q)**2)
+          if (d2 < best_d2) then
+            best_d2 = d2
+            best_s = s
+            best_k = k
+            best_f = f
+            best_q = q
+          end if
+        end do
+      end do
+      if (best_s == 0) cycle
+      hit(i) = best_s
+      gap(i) = sqrt(best_d2)
+      call pseudo_normal(best_s, best_k, best_f, nrm, inside)
+      d = p - best_q
+      inside = inside .and. dot_product(d, nrm) < 0.0_rk
+      if (inside .and. self) then
+        own_n = node_normal(own, i)
+        inside = dot_product(own_n, nrm) < 0.0_rk
+      end if
+      if (inside) then
+        gap(i) = -gap(i)
+        if (norm2(d) > 0.0_rk) inward(:, i) = -d / norm2(d)
+      end if
+    end do
+
+  contains
+
+    subroutine build_grid()
+      real(rk) :: blo(3), bhi(3)
+      integer, allocatable :: fill(:)
+      integer :: a1(3), a2(3), jx, jy, jz, jc, total, pass
+      lo = huge(1.0_rk)
+      hi = -huge(1.0_rk)
+      do s = 1, target%nseg
+        do k = 1, 4
+          lo = min(lo, x(:, target%segments(k, s)))
+          hi = max(hi, x(:, target%segments(k, s)))
+        end do
+      end do
+      cell = max(reach, maxval(hi - lo) / real(MAX_CELLS, rk), tiny(1.0_rk))
+      ncell = max(1, min(MAX_CELLS, int((hi - lo) / cell) + 1))
+      total = product(ncell)
+      allocate(cell_start(total + 1), fill(total))
+      fill = 0
+      do pass = 1, 2
+          if (pass == 2) then
+            cell_start(1) = 1
+            do jc = 1, total
+              cell_start(jc + 1) = cell_start(jc) + fill(jc)
+            end do
+            allocate(cell_list(cell_start(total + 1) - 1))
+            fill = 0
+          end if
+          do s = 1, target%nseg
+            blo = huge(1.0_rk)
+            bhi = -huge(1.0_rk)
+            do k = 1, 4
+              blo = min(blo, x(:, target%segments(k, s)))
+              bhi = max(bhi, x(:, target%segments(k, s)))
+            end do
+            a1 = cell_of(blo)
+            a2 = cell_of(bhi)
+            do jz = a1(3), a2(3)
+              do jy = a1(2), a2(2)
+                do jx = a1(1), a2(1)
+                  jc = jx + ncell(1) * ((jy - 1) + ncell(2) * (jz - 1))
+                  if (pass == 2) cell_list(cell_start(jc) + fill(jc)) = s
+                  fill(jc) = fill(jc) + 1
+                end do
+              end do
+            end do
+          end do
+        end do
+    end subroutine build_grid
+
+    pure function cell_of(point) result(c)
+      real(rk), intent(in) :: point(3)
+      integer :: c(3)
+      c = int((point - lo) / cell) + 1
+      c = max(1, min(ncell, c))
+    end function cell_of
+
+    !> Mark (ring = i) the segments within two rings of own node i.
+    subroutine mark_rings(i)
+      integer, intent(in) :: i
+      integer :: e1, s1, c, n2, e2
+      do e1 = own%node_start(i), own%node_start(i + 1) - 1
+        s1 = own%node_segments(e1)
+        do c = 1, 4
+          n2 = surface_node_index(own, own%segments(c, s1))
+          do e2 = own%node_start(n2), own%node_start(n2 + 1) - 1
+            ring(own%node_segments(e2)) = i
+          end do
+        end do
+      end do
+    end subroutine mark_rings
+
+    !> Pseudo-normal of feature f of triangle k of segment s, and whether
+    !> the sign test applies (false: beside a free boundary, outside).
+    subroutine pseudo_normal(s, k, f, n, applies)
+      integer, intent(in) :: s, k, f
+      real(rk), intent(out) :: n(3)
+      logical, intent(out) :: applies
+      integer :: t, kk, km, vertex_node
+      logical :: free
+      real(rk) :: lateral(3)
+      applies = .true.
+      free = .false.
+      km = mod(k + 2, 4) + 1
+      kk = mod(k, 4) + 1
+      select case (f)
+      case (FEATURE_FACE)
+        n = tn(:, k, s)
+      case (1)
+        ! Segment edge k (P_k, P_k+1): the neighbour's triangle on it.
+        t = target%neighbours(k, s)
+        n = tn(:, k, s)
+        if (t == 0) then
+          free = .true.
+        else
+          n = n + tn(:, edge_triangle(t, target%segments(kk, s), target%segments(k, s)), t)
+        end if
+      case (2)
+        ! Edge (P_k+1, C): shared with triangle k+1 of s.
+        n = tn(:, k, s) + tn(:, kk, s)
+      case (3)
+        ! Edge (C, P_k): shared with triangle k-1 of s.
+        n = tn(:, k, s) + tn(:, km, s)
+      case (6)
+        ! The centre: the four triangles, each with its angle there.
+        n = 0.0_rk
+        do t = 1, 4
+          n = n + corner_angle(tc(:, s), x(:, target%segments(t, s)), &
+              x(:, target%segments(mod(t, 4) + 1, s))) * tn(:, t, s)
+        end do
+      case default
+        ! A corner node of the segment.
+        vertex_node = target%segments(k, s)
+        if (f == 5) vertex_node = target%segments(kk, s)
+        call vertex_normal(vertex_node, n, free)
+      end select
+      if (free .and. norm2(n) > 0.0_rk) then
+        n = n / norm2(n)
+        lateral = (p - best_q) - dot_product(p - best_q, n) * n
+        applies = norm2(lateral) <= LATERAL_FRACTION * tsize(s)
+      end if
+    end subroutine pseudo_normal
+
+    !> The triangle of segment t whose segment edge runs from node a to b.
+    integer function edge_triangle(t, a, b) result(kt)
+      integer, intent(in) :: t
+      integer(ik), intent(in) :: a, b
+      do kt = 1, 4
+        if (target%segments(kt, t) == a .and. target%segments(mod(kt, 4) + 1, t) == b) return
+      end do
+      do kt = 1, 4
+        if (target%segments(kt, t) == b .and. target%segments(mod(kt, 4) + 1, t) == a) return
+      end do
+      kt = 1
+    end function edge_triangle
+
+    !> Angle-weighted normal at a corner node of the target, and whether the
+    !> node is on a free edge.
+    subroutine vertex_normal(vnode, n, free)
+      integer(ik), intent(in) :: vnode
+      real(rk), intent(out) :: n(3)
+      logical, intent(out) :: free
+      integer :: iv, e1, s1, c, cp, cm
+      n = 0.0_rk
+      free = .false.
+      iv = surface_node_index(target, vnode)
+      do e1 = target%node_start(iv), target%node_start(iv + 1) - 1
+        s1 = target%node_segments(e1)
+        c = findloc(target%segments(:, s1), vnode, dim=1)
+        cp = mod(c, 4) + 1
+        cm = mod(c + 2, 4) + 1
+        ! Triangle c = (P_c, P_c+1, C) and triangle c-1 = (P_c-1, P_c, C).
+        n = n + corner_angle(x(:, vnode), x(:, target%segments(cp, s1)), tc(:, s1)) * &
+            tn(:, c, s1)
+        n = n + corner_angle(x(:, vnode), tc(:, s1), x(:, target%segments(cm, s1))) * &
+            tn(:, cm, s1)
+        if (target%neighbours(c, s1) == 0 .or. target%neighbours(cm, s1) == 0) free = .true.
+      end do
+    end subroutine vertex_normal
+
+    !> Area-weighted unit normal of own node i.
+    function node_normal(surf, i) result(n)
+      type(contact_surface_t), intent(in) :: surf
+      integer, intent(in) :: i
+      real(rk) :: n(3), pc(3, 4), cen(3)
+      integer :: e1, s1, k1
+      n = 0.0_rk
+      do e1 = surf%node_start(i), surf%node_start(i + 1) - 1
+        s1 = surf%node_segments(e1)
+        pc = x(:, surf%segments(:, s1))
+        cen = 0.25_rk * (((pc(:, 1) + pc(:, 2)) + pc(:, 3)) + pc(:, 4))
+        do k1 = 1, 4
+          n = n + cross(pc(:, mod(k1, 4) + 1) - pc(:, k1), cen - pc(:, k1))
+        end do
+      end do
+      if (norm2(n) > 0.0_rk) n = n / norm2(n)
+    end function node_normal
+
+  end subroutine audit_gaps
+
+  !> Angle at vertex v of the triangle (v, a, b).
+  pure real(rk) function corner_angle(v, a, b) result(angle)
+    real(rk), intent(in) :: v(3), a(3), b(3)
+    angle = atan2(norm2(cross(a - v, b - v)), dot_product(a - v, b - v))
+  end function corner_angle
+
+  !> Sort integers ascending (insertion sort: candidate lists are short).
+  pure subroutine sort_ints(a)
+    integer, intent(inout) :: a(:)
+    integer :: i, j, v
+    do i = 2, size(a)
+      v = a(i)
+      j = i - 1
+      do while (j >= 1)
+        if (a(j) <= v) exit
+        a(j + 1) = a(j)
+        j = j - 1
+      end do
+      a(j + 1) = v
+    end do
+  end subroutine sort_ints
+
+end module contact_audit
