@@ -24,6 +24,8 @@ module app_run
   use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
       contact_report, &
       contact_diagnostics, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
+  use contact_monitor, only: contact_initial, contact_audit_run, contact_step_end
+  use contact_state, only: initial_offsets_t
   use parallel_env, only: par_rank, par_size, par_allgather, par_sum, par_sum_array, par_bcast, par_max
   implicit none
   private
@@ -63,6 +65,7 @@ contains
     type(state_t) :: state
     type(material_zones_t) :: mz
     type(contact_t) :: ct
+    type(initial_offsets_t), allocatable :: offsets(:)
     type(control_t) :: ctl
     character(len=256) :: restart
     character(len=400) :: msg
@@ -92,9 +95,12 @@ contains
           ''' does not exist')
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
+    ! Initial penetration (may move nodes: before the nodal masses).
+    if (status%ok() .and. size(config%contacts) > 0) call contact_initial(config%contacts, &
+        global, offsets, status)
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
     if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
-        status)
+        status, offsets)
     if (.not. status%ok()) then
       call report(status)
       code = EXIT_INPUT
@@ -117,9 +123,15 @@ contains
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
     call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl)
+    if (ct%npair > 0) then
+      allocate(state%node_contact_gap(size(state%node_position, 2)))
+      state%node_contact_gap = 0.0_rk
+      call audit(ct, state)
+    end if
     if (len_trim(restart) == 0) then
       state%energy_initial = total_energy(mesh, state)
       call history_open(config, state, .false.)
+      call history_write(config, mesh, state, ct)
     else
       call history_open(config, state, .true.)
     end if
@@ -255,7 +267,7 @@ contains
     real(rk) :: wall_output, wall_mark, halo_max
     integer(i8) :: cycle_status
     integer :: bad, bad_half
-    logical :: last, dump_now, ok, exists
+    logical :: last, dump_now, ok, exists, audit_now
     integer :: request, signum
     real(rk) :: wall_cycle_start, cycle_wall, wall_dump
     character(len=16) :: reason
@@ -330,12 +342,29 @@ contains
           call inject_tangle(mesh, state)
       call step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work, halo)
       state%boundary_work = state%boundary_work + par_sum(work)
-      if (ct%npair > 0) call contact_cycle_end(config, ct, state, par_sum(contact_work))
+      if (ct%npair > 0) then
+        state%contact_work = state%contact_work + par_sum(contact_work)
+        call contact_step_end(ct)
+      end if
       state%time = state%time + dt
       if (last) state%time = config%t_end
       if (dump_now .and. abs(state%time - next_dump) <= 1.0e-9_rk * dt) state%time = next_dump
       state%cycle = state%cycle + 1
       state%dt_previous = dt_stable
+      ! The contact audit: after every global search and before every dump.
+      if (ct%npair > 0) then
+        audit_now = ct%audit_due .or. dump_now .or. last
+        if (config%output%dump_cycles > 0) audit_now = audit_now .or. &
+            mod(state%cycle, int(config%output%dump_cycles, i8)) == 0
+        if (audit_now) call audit(ct, state)
+        if (ct%stop_run) then
+          if (par_rank() == 0) write(error_unit, '(a)') '  writing a final dump and stopping'
+          call history_write(config, mesh, state, ct)
+          call write_dump(config, mesh, state, 'failure', wall_start, ok)
+          code = EXIT_FAILURE
+          return
+        end if
+      end if
 
       if (state%cycle == config%fault_cycle .and. config%fault_kind == 'nan') &
           call inject_nan(mesh, state)
@@ -450,27 +479,14 @@ contains
     text = trim(adjustl(buffer))
   end function seconds
 
-  !> Contact bookkeeping at the end of a cycle: contact work, and a warning
-  !> (once per pair) when the penetration exceeds the deck's tolerance.
-  subroutine contact_cycle_end(config, ct, state, work)
-    type(config_t), intent(in) :: config
+  !> The contact audit at x^n of the state; its gaps go to the dumps.
+  subroutine audit(ct, state)
     type(contact_t), intent(inout) :: ct
     type(state_t), intent(inout) :: state
-    real(rk), intent(in) :: work !< contact work of the step, summed over ranks
-    integer :: k
-    state%contact_work = state%contact_work + work
-    do k = 1, ct%npair
-      associate(p => ct%pairs(k))
-        if (p%warned .or. .not. p%diag(3) > p%spec%penetration_warning) cycle
-        p%warned = .true.
-        if (par_rank() == 0) write(error_unit, '(a,es10.3,a,es10.3,a,i0,a,es12.5,a)') &
-            'impact3d: warning: &contact '''//trim(config%contacts(k)%name)// &
-            ''': penetration ', p%diag(3), ' exceeds penetration_warning = ', &
-            p%spec%penetration_warning, ' at cycle ', state%cycle, ', t = ', state%time, &
-            ' (reported once)'
-      end associate
-    end do
-  end subroutine contact_cycle_end
+    call contact_audit_run(ct, state%node_position, state%cycle, state%time)
+    state%node_contact_gap = 0.0_rk
+    state%node_contact_gap(ct%own_local) = ct%gap_own
+  end subroutine audit
 
   !> Testing aid (&control fault_nan_cycle): a NaN energy in global zone 1.
   subroutine inject_nan(mesh, state)
@@ -566,8 +582,8 @@ contains
     if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
         state%node_force, dt, state%cycle + 1, .true., wall_time)
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
-    if (ct%npair > 0) contact_work = contact_work_update(ct, state%node_velocity_old, &
-        state%node_velocity, dt)
+    if (ct%npair > 0) call contact_work_update(ct, state%node_velocity_old, &
+        state%node_velocity, dt, contact_work)
     call halo%start()
     call mesh%node_halo%exchange(state%node_velocity)
     call halo%stop()
@@ -623,7 +639,7 @@ contains
     end if
     call dump_series_update(trim(config%output%directory)//'/'//trim(config%output%prefix), &
         trim(path), config%title, state%cycle, state%time, mesh%nnode_global, mesh%nzone_global, &
-        allocated(state%zone_stress))
+        allocated(state%zone_stress), allocated(state%node_contact_gap))
     if (par_rank() == 0) write(output_unit, '(a)') '  dump '//trim(path)
   end subroutine write_dump
 

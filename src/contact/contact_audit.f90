@@ -41,9 +41,11 @@
 module contact_audit
   use core_kinds, only: rk, ik
   use contact_surface, only: contact_surface_t, surface_node_index
+  use contact_search, only: sort_real
   implicit none
   private
   public :: audit_gaps, segment_metrics, closest_on_triangle, node_tolerance
+  public :: surface_sagitta, audit_reach
   public :: FEATURE_FACE, SIZE_FRACTION
 
   !> Feature of a triangle (a, b, c) holding the closest point.
@@ -53,6 +55,10 @@ module contact_audit
   !> A closest point on a free boundary with a sideways offset beyond this
   !> fraction of the segment size is beside the surface (outside).
   real(rk), parameter :: LATERAL_FRACTION = 1.0e-3_rk
+  !> Audit reach in median segment sizes: a node deeper than this inside the
+  !> other body is not seen (a zone's worth of penetration is already a
+  !> failure of the contact).
+  real(rk), parameter :: REACH_SIZES = 3.0_rk
   !> Largest number of grid cells along one axis.
   integer, parameter :: MAX_CELLS = 64
 
@@ -177,6 +183,36 @@ contains
       sagitta(s) = 0.125_rk * kappa * diag**2
     end do
   end subroutine segment_metrics
+
+  !> Faceting sagitta of every segment of a surface (see segment_metrics).
+  subroutine surface_sagitta(x, surf, sag)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    real(rk), allocatable, intent(out) :: sag(:)
+    real(rk), allocatable :: sz(:), tn(:, :, :), tc(:, :)
+    allocate(sag(surf%nseg), sz(surf%nseg), tn(3, 4, surf%nseg), tc(3, surf%nseg))
+    call segment_metrics(x, surf, sz, sag, tn, tc)
+  end subroutine surface_sagitta
+
+  !> Audit reach of an interface: REACH_SIZES times the larger of the two
+  !> surfaces' median segment sizes.
+  function audit_reach(x, a, b) result(reach)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: a, b
+    real(rk) :: reach
+    reach = REACH_SIZES * max(median_size(a), median_size(b), tiny(1.0_rk))
+  contains
+    real(rk) function median_size(surf) result(h)
+      type(contact_surface_t), intent(in) :: surf
+      real(rk), allocatable :: sz(:), sag(:), tn(:, :, :), tc(:, :)
+      h = 0.0_rk
+      if (surf%nseg == 0) return
+      allocate(sag(surf%nseg), sz(surf%nseg), tn(3, 4, surf%nseg), tc(3, surf%nseg))
+      call segment_metrics(x, surf, sz, sag, tn, tc)
+      call sort_real(sz)
+      h = sz((surf%nseg + 1) / 2)
+    end function median_size
+  end function audit_reach
 
   !> Default penetration tolerance of a node: the larger of SIZE_FRACTION of
   !> the smaller of its own smallest adjacent segment (own_size) and the

@@ -82,7 +82,8 @@ module contact_enforce
   use contact_rbf, only: rbf_weights
   use contact_state, only: METHOD_DAM, METHOD_DLM, FORM_COORDINATE, FORM_VELOCITY, &
       FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
-      surface_geometry_t, interface_t, selection_t, contact_t, capture_of
+      surface_geometry_t, interface_t, selection_t, contact_t, capture_of, initial_offsets_t
+  use contact_audit, only: surface_sagitta, audit_reach
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
@@ -100,8 +101,12 @@ module contact_enforce
   !> DLM velocity form: default fraction of a facet pair's penetration removed
   !> per step (see dlm_step).
   real(rk), parameter :: DEFAULT_RECOVERY = 0.2_rk
-  !> Penetration a facet pair may keep without recovery, as a fraction of the
-  !> size (square root of the area) of the smaller of its two segments.
+  !> Share of the audit's tolerance (contact_audit) a facet pair may keep
+  !> without recovery: the recovery starts well below the tolerance, so a
+  !> pair it holds keeps a margin for one step's overshoot.
+  real(rk), parameter :: ALLOWANCE_SHARE = 0.4_rk
+  !> The size part of that allowance, ALLOWANCE_SHARE x SIZE_FRACTION (0.05)
+  !> of the size (square root of the area) of the smaller of the two segments.
   real(rk), parameter :: RECOVERY_ALLOWANCE = 0.02_rk
   !> Overlaps smaller than this fraction of the smaller facet's area are
   !> ignored: slivers between facets of neighbouring nodes that coincide in
@@ -114,13 +119,15 @@ contains
 
   !> Build the contact surfaces in contact-index space, the owned-node map and
   !> the nodal masses. Problems go to status (group, key, reason).
-  subroutine contact_setup(specs, global, mesh, node_mass, ct, status)
+  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
     real(rk), intent(in) :: node_mass(:) !< (nnode local) nodal masses
     type(contact_t), intent(inout) :: ct
     type(status_t), intent(inout) :: status
+    !> initial penetration kept per surface node (contact_initial); none: zero
+    type(initial_offsets_t), intent(in), optional :: offsets(:)
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
     integer(i8), allocatable :: all(:)
     real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
@@ -230,6 +237,31 @@ contains
       ct%pairs(k)%was_active = .false.
     end do
 
+    ! The audit's set-up: offsets, sagittas at t = 0, reach, force output.
+    allocate(ct%gap_own(ct%nown))
+    ct%gap_own = 0.0_rk
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        allocate(p%offset(ct%nall), p%own_in_a(ct%nown), p%fc_own(3, ct%nown))
+        p%offset = 0.0_rk
+        p%fc_own = 0.0_rk
+        if (present(offsets)) then
+          do i = 1, p%all_a%nnode
+            p%offset(p%all_a%nodes(i)) = max(p%offset(p%all_a%nodes(i)), offsets(k)%a(i))
+          end do
+          do i = 1, p%all_b%nnode
+            p%offset(p%all_b%nodes(i)) = max(p%offset(p%all_b%nodes(i)), offsets(k)%b(i))
+          end do
+        end if
+        do i = 1, ct%nown
+          p%own_in_a(i) = surface_node_index(p%all_a, ct%own_contact(i)) > 0
+        end do
+        call surface_sagitta(xc, p%all_a, p%sag_a)
+        call surface_sagitta(xc, p%all_b, p%sag_b)
+        p%reach = audit_reach(xc, p%all_a, p%all_b)
+      end associate
+    end do
+
   contains
 
     subroutine renumber(raw, surf)
@@ -302,6 +334,7 @@ contains
     ct%speed = par_max(speed)
     call lap(ct%wait_seconds)
     rebuilt = cycle >= ct%next_search .or. .not. allocated(ct%all_of)
+    if (rebuilt) ct%audit_due = .true.
     if (rebuilt) call contact_rebuild(ct, x_old, dt, cycle, sel)
     call lap(ct%search_seconds)
     call gather_nodes(ct, x_old, v_old, force)
@@ -355,6 +388,14 @@ contains
       end do
       force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + ct%fc(:, i)
     end do
+    if (final) then
+      do k = 1, ct%npair
+        do i = 1, ct%nown
+          ct%pairs(k)%fc_own(:, i) = 0.0_rk
+          if (has(i, k)) ct%pairs(k)%fc_own(:, i) = fck(:, i, k)
+        end do
+      end do
+    end if
     if (final) call reduce_diagnostics(ct, has, dt)
     call take(dlm_out, ct%kept(1), 3)
     call take(dam_out, ct%kept(2), 10)
@@ -474,10 +515,10 @@ contains
         call par_sum_array(sums)
         pen_max = par_max(p%partial(3))
         if (p%method == METHOD_DLM) then
-          p%diag = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), tiny(1.0_rk))), &
+          p%diag(1:8) = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), tiny(1.0_rk))), &
               sums(8), sums(5:7)]
         else
-          p%diag = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), 1.0_rk)), &
+          p%diag(1:8) = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), 1.0_rk)), &
               sums(8), sums(5:7)]
         end if
       end associate
@@ -518,7 +559,7 @@ contains
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, wh, wd, t1(3), t2(3), origin(3)
-    real(rk) :: allowance
+    real(rk) :: allowance, kept
     real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT), seg_a(4), seg_b(4)
     real(rk) :: a2(2, 3, SEGMENT_FACET_COUNT), b2(2, 3, SEGMENT_FACET_COUNT), centre2(2)
     integer :: m, sa, sb, i, j, nodeh, noded
@@ -551,10 +592,17 @@ contains
         call segment_box(ct%x, p%a%segments(:, sa), origin, t1, t2, seg_a)
         call segment_box(ct%x, p%b%segments(:, sb), origin, t1, t2, seg_b)
         if (.not. boxes_meet(seg_a, seg_b)) cycle
-        ! Penetration beyond a small fraction of the segments' size is what
-        ! the velocity form's recovery removes (below it: the mismatch of two
-        ! faceted versions of one curved surface, left alone).
-        allowance = RECOVERY_ALLOWANCE * sqrt(min(sum(ga%area(:, sa)), sum(gb%area(:, sb))))
+        ! Penetration beyond an allowance is what the velocity form's
+        ! recovery removes: ALLOWANCE_SHARE of the audit's tolerance (a
+        ! fraction of the segments' size, or the faceting sagitta, the
+        ! mismatch of two faceted versions of one curved surface, left
+        ! alone), plus the initial penetration the deck kept.
+        if (p%spec%penetration_tolerance > 0.0_rk) then
+          allowance = ALLOWANCE_SHARE * p%spec%penetration_tolerance
+        else
+          allowance = max(RECOVERY_ALLOWANCE * sqrt(min(sum(ga%area(:, sa)), &
+              sum(gb%area(:, sb)))), ALLOWANCE_SHARE * max(p%lsag_a(sa), p%lsag_b(sb)))
+        end if
         call project_facets(ga%facets(:, :, :, sa), origin, t1, t2, a2, box_a)
         call project_facets(gb%facets(:, :, :, sb), origin, t1, t2, b2, box_b)
         do i = 1, SEGMENT_FACET_COUNT
@@ -583,10 +631,13 @@ contains
               wh = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(nodeh)
               wd = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(noded)
             end if
+            ! The initial penetration the deck kept (contact_initial) is
+            ! held, not pushed out.
+            kept = max(p%offset(ct%all_of(nodeh)), p%offset(ct%all_of(noded)))
             ! Deeper than half a segment: the far side of a body, not contact.
-            if (pen > 0.5_rk * p%size) cycle
-            call add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, &
-                max(pen - allowance, 0.0_rk), &
+            if (pen - kept > 0.5_rk * p%size) cycle
+            call add_facet_pair(p, nodeh, noded, wh, wd, pen - kept, s0, nrm, &
+                max(pen - kept - allowance, 0.0_rk), &
                 p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8))
           end do
         end do
@@ -757,7 +808,8 @@ contains
     call geometry_update(ct%x, p%a, p%ga)
     call geometry_update(ct%x, p%b, p%gb)
     capture = capture_of(p, 2.0_rk * ct%speed, dt)
-    call primary_pairs(ct%x, p%b, p%test_pairs, capture, 0.5_rk * p%size, p%primary)
+    call primary_pairs(ct%x, p%b, p%test_pairs, capture, 0.5_rk * p%size, p%primary, &
+        p%offset(ct%all_of))
     if (allocated(p%rbf)) deallocate(p%rbf, p%ex_start)
     allocate(p%rbf(4, size(p%primary)), p%ex_start(size(p%primary) + 1))
     if (.not. allocated(p%ex_master)) allocate(p%ex_master(64), p%ex_real(3, 64))
@@ -973,19 +1025,29 @@ contains
 
   !> After the velocity update: the work of the contact forces over the step
   !> on the owned nodes (local sum; the caller reduces it).
-  function contact_work_update(ct, v_old, v_new, dt) result(work)
-    type(contact_t), intent(in) :: ct
+  subroutine contact_work_update(ct, v_old, v_new, dt, work)
+    type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: v_old(:, :), v_new(:, :)
     real(rk), intent(in) :: dt
-    real(rk) :: work
-    integer :: i, n
+    real(rk), intent(out) :: work !< this rank's contact work of the step
+    integer :: i, n, k
     work = 0.0_rk
     do i = 1, ct%nown
       n = ct%own_local(i)
       work = work + 0.5_rk * dt * dot_product(ct%fc(:, i), &
           v_old(:, n) + v_new(:, n))
     end do
-  end function contact_work_update
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        p%work_step = 0.0_rk
+        do i = 1, ct%nown
+          n = ct%own_local(i)
+          p%work_step = p%work_step + 0.5_rk * dt * dot_product(p%fc_own(:, i), &
+              v_old(:, n) + v_new(:, n))
+        end do
+      end associate
+    end do
+  end subroutine contact_work_update
 
   !> Diagnostics of every pair, (CONTACT_DIAG_COUNT, npair), replicated.
   function contact_diagnostics(ct) result(diag)

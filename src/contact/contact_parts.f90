@@ -271,6 +271,15 @@ contains
       associate(p => ct%pairs(k), pairs => sel(k)%pairs)
         call local_surface(p%all_a, sel(k)%mark_a, l_of, ct%x, p%a, seg_a)
         call local_surface(p%all_b, sel(k)%mark_b, l_of, ct%x, p%b, seg_b)
+        ! The sagittas of the local segments (the audit's, at t = 0).
+        if (allocated(p%lsag_a)) deallocate(p%lsag_a, p%lsag_b)
+        allocate(p%lsag_a(p%a%nseg), p%lsag_b(p%b%nseg))
+        do m = 1, p%all_a%nseg
+          if (seg_a(m) > 0) p%lsag_a(seg_a(m)) = p%sag_a(m)
+        end do
+        do m = 1, p%all_b%nseg
+          if (seg_b(m) > 0) p%lsag_b(seg_b(m)) = p%sag_b(m)
+        end do
         if (p%method == METHOD_DLM) then
           p%segment_pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
               m = 1, size(pairs, 2))], [2, size(pairs, 2)])

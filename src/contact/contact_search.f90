@@ -642,12 +642,14 @@ contains
 
   !> At most one primary pair per slave node from the test pairs (sorted by node,
   !> as bucket_search returns them): smallest |gap|, then lowest segment id.
-  subroutine primary_pairs(x, master, pairs, capture, depth, primary)
+  subroutine primary_pairs(x, master, pairs, capture, depth, primary, kept)
     real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
     type(contact_surface_t), intent(in) :: master
     integer, intent(in) :: pairs(:, :) !< (2, npair) node id, segment; grouped by node
     real(rk), intent(in) :: capture !< capture tolerance (largest open gap)
     real(rk), intent(in) :: depth !< largest accepted penetration
+    !> (nnode) initial penetration kept per node: accepted on top of depth
+    real(rk), intent(in), optional :: kept(:)
     type(primary_pair_t), allocatable, intent(out) :: primary(:)
     type(primary_pair_t) :: best, trial
     integer :: m, count_primary, s, location, previous_node
@@ -664,8 +666,13 @@ contains
       trial%segment = s
       call closest_point(x(:, master%segments(:, s)), x(:, pairs(1, m)), trial%xi, trial%eta, &
           trial%gap, trial%normal, location, trial%local)
-      trial%kind = contact_kind(location, trial%local, trial%gap, master%edge_convex(:, s), &
-          capture, depth)
+      if (present(kept)) then
+        trial%kind = contact_kind(location, trial%local, trial%gap, master%edge_convex(:, s), &
+            capture, depth + kept(pairs(1, m)))
+      else
+        trial%kind = contact_kind(location, trial%local, trial%gap, master%edge_convex(:, s), &
+            capture, depth)
+      end if
       if (trial%kind == KIND_NONE) cycle
       if (best%kind == KIND_NONE) then
         best = trial

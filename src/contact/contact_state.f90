@@ -20,10 +20,20 @@ module contact_state
   !> normal force; pen_max, pen_rms: largest and RMS penetration at t^n;
   !> released: nodes in contact last step and not now; dmom: momentum the
   !> contact forces added over the step (zero to round-off for DLM).
-  integer, parameter, public :: CONTACT_DIAG_COUNT = 8
+  !> force_x, _y, _z: contact force on surface a (the DAM slave side) in the
+  !> corrector; work: contact work of the interface so far; audit_*: the
+  !> geometric audit (contact_monitor) at the last search or dump:
+  !> audit_pen_max_a / _b the deepest node of surface a / b beyond its
+  !> initial offset, audit_count_a / _b the nodes deeper than the tolerance,
+  !> unheld: those of them in no enforced pair (DAM: slave nodes only; a
+  !> master node's penetration is in audit_*_b).
+  integer, parameter, public :: CONTACT_DIAG_COUNT = 17
   character(len=*), parameter, public :: CONTACT_DIAG_NAMES(CONTACT_DIAG_COUNT) = [ &
-      character(len=12) :: 'active', 'force', 'pen_max', 'pen_rms', 'released', &
-      'dmom_x', 'dmom_y', 'dmom_z']
+      character(len=16) :: 'active', 'force', 'pen_max', 'pen_rms', 'released', &
+      'dmom_x', 'dmom_y', 'dmom_z', 'force_x', 'force_y', 'force_z', 'work', &
+      'audit_pen_max_a', 'audit_pen_max_b', 'audit_count_a', 'audit_count_b', 'unheld']
+  !> Positions of the monitor's columns in diag.
+  integer, parameter, public :: DIAG_FORCE = 9, DIAG_WORK = 12, DIAG_AUDIT = 13
 
   !> Length of a contact surface's list of face-set names.
   integer, parameter, public :: SURFACE_LEN = 256
@@ -38,7 +48,12 @@ module contact_state
     character(len=8) :: normal = 'master' !< DAM: contact normal of a slave, 'master' or 'slave'
     character(len=12) :: form = 'velocity' !< DLM: coordinate, velocity, combined
     real(rk) :: capture = 0.0_rk !< largest open gap treated as contact (0 = automatic)
-    real(rk) :: penetration_warning = huge(1.0_rk) !< warn above this penetration
+    !> audit: penetration a node may have (0 = automatic: the larger of 5% of
+    !> the smaller adjacent segment and the opposite surface's sagitta)
+    real(rk) :: penetration_tolerance = 0.0_rk
+    character(len=8) :: on_penetration = 'warn' !< audit violation: 'warn' or 'stop'
+    !> penetration at set-up beyond the tolerance: 'error', 'adjust' or 'ignore'
+    character(len=8) :: initial_penetration = 'error'
     real(rk) :: search_margin = 0.0_rk !< territory margin (0 = automatic)
     integer :: search_every = 0 !< cycles between global searches (0 = automatic)
     integer :: sweeps = 1 !< DLM: Gauss-Seidel sweeps of the pair forces (1 = one pass)
@@ -91,7 +106,17 @@ module contact_state
     logical, allocatable :: enforced(:) !< DAM: (ncn) local slave enforced this stage
     real(rk) :: partial(CONTACT_DIAG_COUNT) = 0.0_rk !< this part's diagnostic sums
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
-    logical, public :: warned = .false. !< the penetration warning was given
+    ! Audit and per-interface output (contact_monitor).
+    real(rk) :: reach = 0.0_rk !< audit reach: twice the larger median segment size
+    real(rk), allocatable :: offset(:) !< (nall) initial penetration kept, per contact node
+    real(rk), allocatable :: sag_a(:), sag_b(:) !< faceting sagitta of all_a, all_b at t = 0
+    real(rk), allocatable :: lsag_a(:), lsag_b(:) !< the same on the local surfaces a, b
+    logical, allocatable :: own_in_a(:) !< (nown) owned node on surface a
+    real(rk), allocatable :: fc_own(:, :) !< (3, nown) the interface's force (corrector)
+    real(rk) :: work_step = 0.0_rk !< this rank's contact work of the interface, last step
+    real(rk) :: work = 0.0_rk !< contact work of the interface so far (all ranks)
+    integer(i8) :: warn_cycle = -huge(1_i8) !< cycle of the last audit warning
+    integer :: warn_skipped = 0 !< violations since that warning
   end type interface_t
 
   !> One interface's pairs from the global search, and the segments of the
@@ -148,7 +173,19 @@ module contact_state
     !> hydro (load imbalance), kept out of the contact times
     real(rk) :: wait_seconds = 0.0_rk
     type(records_t) :: kept(3) !< record buffers (DLM, DAM exchange, DAM put-back) between stages
+    ! The audit (contact_monitor).
+    real(rk), allocatable :: gap_own(:) !< (nown) smallest signed gap of each owned node
+    logical :: audit_due = .true. !< a search ran since the last audit
+    integer(i8) :: audited_cycle = -1 !< cycle of the last audit
+    logical :: stop_run = .false. !< on_penetration = 'stop' and the audit failed
+    real(rk) :: audit_seconds = 0.0_rk
   end type contact_t
+
+  !> Initial penetration kept as an offset, per node of surfaces a and b
+  !> (surface node order), from the set-up audit.
+  type, public :: initial_offsets_t
+    real(rk), allocatable :: a(:), b(:)
+  end type initial_offsets_t
 
 
 contains

@@ -51,6 +51,9 @@ module hydro_state
     real(rk), allocatable :: zone_stress(:, :) !< (6, nzone) deviatoric stress (strength only)
     real(rk), allocatable :: zone_stress_half(:, :) !< its value at t^n+1/2
     real(rk), allocatable :: zone_plastic_strain(:) !< equivalent plastic strain
+    !> signed distance of a contact node to the opposite surface at the last
+    !> contact audit (< 0: penetration; 0 off the contact surfaces)
+    real(rk), allocatable :: node_contact_gap(:)
     real(rk) :: time = 0.0_rk !< t^n
     real(rk) :: dt = 0.0_rk !< step of the current cycle
     real(rk) :: dt_previous = 0.0_rk !< step of the previous cycle (0 before the first)

@@ -128,7 +128,8 @@ contains
     case ('contact')
       keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
           'capture', 'penetration_warning', 'search_margin', 'search_every', 'form', &
-          'sweeps', 'recovery', 'normal']
+          'sweeps', 'recovery', 'normal', 'penetration_tolerance', 'on_penetration', &
+          'initial_penetration']
     case default
       allocate(keys(0))
     end select
@@ -1001,13 +1002,14 @@ contains
     type(status_t), intent(inout) :: status
     character(len=NAME_LEN) :: name, master
     character(len=SURFACE_LEN) :: surface_a, surface_b
-    character(len=16) :: method, form, normal
-    real(rk) :: capture, penetration_warning, search_margin, recovery
+    character(len=16) :: method, form, normal, on_penetration, initial_penetration
+    real(rk) :: capture, penetration_warning, search_margin, recovery, penetration_tolerance
     integer :: search_every, sweeps, ios
     character(len=256) :: msg
     character(len=16) :: where
     namelist /contact/ name, surface_a, surface_b, method, master, capture, &
-        penetration_warning, search_margin, search_every, form, sweeps, recovery, normal
+        penetration_warning, search_margin, search_every, form, sweeps, recovery, normal, &
+        penetration_tolerance, on_penetration, initial_penetration
 
     write(where, '(a,i0,a)') '&contact(', index, ')'
     name = ''
@@ -1016,7 +1018,10 @@ contains
     method = ''
     master = ''
     capture = pair%capture
-    penetration_warning = pair%penetration_warning
+    penetration_warning = -1.0_rk
+    penetration_tolerance = pair%penetration_tolerance
+    on_penetration = pair%on_penetration
+    initial_penetration = pair%initial_penetration
     search_margin = pair%search_margin
     search_every = pair%search_every
     sweeps = pair%sweeps
@@ -1074,14 +1079,31 @@ contains
           '(valid: master, slave)')
     end select
     if (.not. (capture >= 0.0_rk)) call status%add(trim(where)//': capture: must be >= 0')
-    if (.not. (penetration_warning > 0.0_rk)) call status%add(trim(where)// &
-        ': penetration_warning: must be > 0')
+    if (penetration_warning /= -1.0_rk) call status%add(trim(where)// &
+        ': penetration_warning: replaced by penetration_tolerance (a length; default the '// &
+        'larger of 5% of the smaller adjacent segment and the faceting sagitta)')
+    if (.not. (penetration_tolerance >= 0.0_rk)) call status%add(trim(where)// &
+        ': penetration_tolerance: must be >= 0 (a length; 0 = automatic)')
+    select case (to_lower(on_penetration))
+    case ('warn', 'stop')
+      pair%on_penetration = to_lower(on_penetration)
+    case default
+      call status%add(trim(where)//': on_penetration: '''//trim(on_penetration)// &
+          ''' is not a choice (valid: warn, stop)')
+    end select
+    select case (to_lower(initial_penetration))
+    case ('error', 'adjust', 'ignore')
+      pair%initial_penetration = to_lower(initial_penetration)
+    case default
+      call status%add(trim(where)//': initial_penetration: '''//trim(initial_penetration)// &
+          ''' is not a choice (valid: error, adjust, ignore)')
+    end select
     if (.not. (search_margin >= 0.0_rk)) call status%add(trim(where)// &
         ': search_margin: must be >= 0 (0 = automatic)')
     if (search_every < 0) call status%add(trim(where)//': search_every: must be >= 0 '// &
         '(0 = automatic)')
     pair%capture = capture
-    pair%penetration_warning = penetration_warning
+    pair%penetration_tolerance = penetration_tolerance
     pair%search_margin = search_margin
     pair%search_every = search_every
     if (sweeps < 1) call status%add(trim(where)//': sweeps: must be >= 1')

@@ -94,6 +94,12 @@ contains
     call h5_write_real_vector(file, '/nodes/mass', nblock1(1, :), mesh%nnode_global, &
         node_first, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    if (allocated(state%node_contact_gap)) then
+      call mesh%node_io%to_block(reshape(state%node_contact_gap(1:nno), [1, nno]), nblock1)
+      call h5_write_real_vector(file, '/nodes/contact_gap', nblock1(1, :), mesh%nnode_global, &
+          node_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end if
 
     ! Zones.
     call zone_field('/zones/density', state%zone_density)
@@ -151,7 +157,7 @@ contains
     if (e /= 0 .and. ierr == 0) ierr = e
     if (.not. agreed()) return
     if (par_rank() == 0) call write_sidecar(path, title, mesh%nnode_global, mesh%nzone_global, &
-        state%time, allocated(state%zone_stress))
+        state%time, allocated(state%zone_stress), allocated(state%node_contact_gap))
 
   contains
 
@@ -181,11 +187,12 @@ contains
   end subroutine dump_write
 
   !> XDMF sidecar for one dump, so that ParaView and VisIt open it directly.
-  subroutine write_sidecar(path, title, nnode, nzone, time, strength)
+  subroutine write_sidecar(path, title, nnode, nzone, time, strength, contact)
     character(len=*), intent(in) :: path, title
     integer(i8), intent(in) :: nnode, nzone
     real(rk), intent(in) :: time
     logical, intent(in) :: strength !< the dump has deviatoric stress and plastic strain
+    logical, intent(in) :: contact !< the dump has the contact audit's gaps
     integer :: unit
     character(len=:), allocatable :: base
     base = basename(path)
@@ -193,19 +200,19 @@ contains
     write(unit, '(a)') '<?xml version="1.0" ?>'
     write(unit, '(a)') '<Xdmf Version="3.0">'
     write(unit, '(a)') ' <Domain>'
-    call write_grid(unit, base, title, nnode, nzone, time, strength)
+    call write_grid(unit, base, title, nnode, nzone, time, strength, contact)
     write(unit, '(a)') ' </Domain>'
     write(unit, '(a)') '</Xdmf>'
     close(unit)
   end subroutine write_sidecar
 
   !> One <Grid> element describing a dump file (path relative to the .xmf).
-  subroutine write_grid(unit, h5file, title, nnode, nzone, time, strength)
+  subroutine write_grid(unit, h5file, title, nnode, nzone, time, strength, contact)
     integer, intent(in) :: unit
     character(len=*), intent(in) :: h5file, title
     integer(i8), intent(in) :: nnode, nzone
     real(rk), intent(in) :: time
-    logical, intent(in) :: strength
+    logical, intent(in) :: strength, contact
     character(len=32) :: nn, nz, ts
     integer :: i
     character(len=*), parameter :: zone_fields(7) = [character(len=24) :: 'density', &
@@ -227,6 +234,12 @@ contains
     write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//' 3" NumberType="Float" '// &
         'Precision="8" Format="HDF">'//h5file//':/nodes/velocity</DataItem>'
     write(unit, '(a)') '   </Attribute>'
+    if (contact) then
+      write(unit, '(a)') '   <Attribute Name="contact_gap" AttributeType="Scalar" Center="Node">'
+      write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//'" NumberType="Float" '// &
+          'Precision="8" Format="HDF">'//h5file//':/nodes/contact_gap</DataItem>'
+      write(unit, '(a)') '   </Attribute>'
+    end if
     write(unit, '(a)') '   <Attribute Name="block" AttributeType="Scalar" Center="Cell">'
     write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//'" NumberType="Int" '// &
         'Precision="4" Format="HDF">'//h5file//':/mesh/block</DataItem>'
@@ -295,13 +308,13 @@ contains
   !> Rank 0: add a dump to the index file series_path.dumps (dropping entries at
   !> or after its cycle, as after a restart) and rewrite the time-series XDMF.
   subroutine dump_series_update(series_path, dump_path, title, cycle, time, nnode, nzone, &
-      strength)
+      strength, contact)
     character(len=*), intent(in) :: series_path !< without extension
     character(len=*), intent(in) :: dump_path, title
     integer(i8), intent(in) :: cycle
     real(rk), intent(in) :: time
     integer(i8), intent(in) :: nnode, nzone
-    logical, intent(in) :: strength
+    logical, intent(in) :: strength, contact
     integer :: unit, ios, n, i
     integer(i8), allocatable :: cycles(:)
     real(rk), allocatable :: times(:)
@@ -354,7 +367,7 @@ contains
     write(unit, '(a)') ' <Domain>'
     write(unit, '(a)') ' <Grid Name="series" GridType="Collection" CollectionType="Temporal">'
     do i = 1, n
-      call write_grid(unit, trim(files(i)), title, nnode, nzone, times(i), strength)
+      call write_grid(unit, trim(files(i)), title, nnode, nzone, times(i), strength, contact)
     end do
     write(unit, '(a)') ' </Grid>'
     write(unit, '(a)') ' </Domain>'

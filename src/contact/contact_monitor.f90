@@ -1,0 +1,435 @@
+!> Contact monitoring: the geometric penetration audit (contact_audit) run on
+!> the whole contact surfaces at set-up (initial penetration: error, adjust
+!> or ignore), at every global search and at every dump; the per-interface
+!> force and work of each step; and the warning policy (on_penetration).
+!>
+!> The audit reads positions only. Every rank holds every contact node's
+!> position (one sum over the ranks per audit) and audits the nodes it owns
+!> against the whole opposite surface, so each node's gap, and so the
+!> maxima and counts, are the same on any number of ranks.
+!>
+!> Penetration of a node = its depth inside the opposite body (the audit's
+!> negative gap) less the initial penetration the deck kept for it (the
+!> offset). A node is a violation when that exceeds its tolerance: the deck's
+!> penetration_tolerance, or by default the larger of 5% of the smaller
+!> adjacent segment and the opposite segment's faceting sagitta. A violation
+!> is unheld when the node carried no force of the interface in the last
+!> corrector (DAM: slave nodes; a master node's penetration is reported in
+!> the side-b columns).
+module contact_monitor
+  use core_kinds, only: rk, ik, i8
+  use core_status, only: status_t
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+  use mesh_global, only: global_mesh_t
+  use contact_surface, only: contact_surface_t, surface_build, set_names_of
+  use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
+  use contact_state, only: METHOD_DAM, METHOD_DLM, contact_spec_t, interface_t, contact_t, &
+      initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT
+  use parallel_env, only: par_sum_array, par_rank, par_size, par_allgather
+  implicit none
+  private
+  public :: contact_initial, contact_audit_run, contact_step_end
+
+  !> At most one audit warning per interface in this many cycles.
+  integer, parameter :: WARN_EVERY = 100
+
+  !> One side's audit: per node of the surface.
+  type :: side_t
+    real(rk), allocatable :: gap(:), pen(:), tol(:), inward(:, :)
+    integer, allocatable :: hit(:)
+  end type side_t
+
+contains
+
+  !> The audit of one side: gaps of the selected nodes of `own` against
+  !> `other`, penetration beyond the offsets, and each node's tolerance.
+  subroutine audit_side(x, own, other, self, reach, tol_fixed, offset, selected, side)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: own, other
+    logical, intent(in) :: self
+    real(rk), intent(in) :: reach, tol_fixed
+    real(rk), intent(in) :: offset(:) !< (own%nnode)
+    logical, intent(in) :: selected(:) !< (own%nnode)
+    type(side_t), intent(out) :: side
+    real(rk), allocatable :: osz(:), osag(:), otn(:, :, :), otc(:, :)
+    real(rk), allocatable :: tsz(:), tsag(:), ttn(:, :, :), ttc(:, :)
+    real(rk) :: hmin
+    integer :: i, e, n
+    n = own%nnode
+    allocate(side%gap(n), side%pen(n), side%tol(n), side%inward(3, n), side%hit(n))
+    call audit_gaps(x, own, other, self, reach, selected, side%gap, side%hit, side%inward)
+    allocate(osz(own%nseg), osag(own%nseg), otn(3, 4, own%nseg), otc(3, own%nseg))
+    call segment_metrics(x, own, osz, osag, otn, otc)
+    allocate(tsz(other%nseg), tsag(other%nseg), ttn(3, 4, other%nseg), ttc(3, other%nseg))
+    call segment_metrics(x, other, tsz, tsag, ttn, ttc)
+    do i = 1, n
+      side%pen(i) = max(-side%gap(i) - offset(i), 0.0_rk)
+      if (tol_fixed > 0.0_rk) then
+        side%tol(i) = tol_fixed
+      else
+        hmin = huge(1.0_rk)
+        do e = own%node_start(i), own%node_start(i + 1) - 1
+          hmin = min(hmin, osz(own%node_segments(e)))
+        end do
+        if (side%hit(i) > 0) then
+          side%tol(i) = node_tolerance(hmin, tsz(side%hit(i)), tsag(side%hit(i)))
+        else
+          side%tol(i) = node_tolerance(hmin, hmin, 0.0_rk)
+        end if
+      end if
+    end do
+  end subroutine audit_side
+
+  !> Initial penetration, at set-up, before the nodal masses: the audit of
+  !> every interface on the deck's mesh. Per interface, rank 0 reports the
+  !> nodes beyond the tolerance (count, deepest, histogram); then by the
+  !> deck's initial_penetration: 'error' adds an input error, 'adjust' moves
+  !> the penetrating nodes of one side (DAM: the slave; DLM: surface_a) onto
+  !> the other surface, 'ignore' keeps every penetration as an offset.
+  !> Penetration within the tolerance is an offset under every option.
+  !> Collective only through nothing: every rank computes the same.
+  subroutine contact_initial(specs, global, offsets, status)
+    type(contact_spec_t), intent(in) :: specs(:)
+    type(global_mesh_t), intent(inout) :: global
+    type(initial_offsets_t), allocatable, intent(out) :: offsets(:)
+    type(status_t), intent(inout) :: status
+    type(contact_surface_t) :: sa, sb
+    type(side_t) :: ra, rb
+    character(len=256) :: slave_set, master_set
+    character(len=600) :: text
+    character(len=:), allocatable :: where
+    real(rk) :: reach, moved, deepest, where_x(3)
+    integer :: k, i, nbeyond_a, nbeyond_b, deepest_node, bins(4)
+    logical :: self, ok
+
+    allocate(offsets(size(specs)))
+    do k = 1, size(specs)
+      where = '&contact '''//trim(specs(k)%name)//''''
+      slave_set = specs(k)%surface_a
+      master_set = specs(k)%surface_b
+      if (specs(k)%method == 'dam' .and. specs(k)%master == 'a') then
+        slave_set = specs(k)%surface_b
+        master_set = specs(k)%surface_a
+      end if
+      ok = status%ok()
+      call surface_build(global, set_names_of(slave_set), sa, status)
+      call surface_build(global, set_names_of(master_set), sb, status)
+      allocate(offsets(k)%a(sa%nnode), offsets(k)%b(sb%nnode))
+      offsets(k)%a = 0.0_rk
+      offsets(k)%b = 0.0_rk
+      if (.not. status%ok() .or. .not. ok) cycle
+      self = specs(k)%surface_a == specs(k)%surface_b
+      reach = audit_reach(global%coordinates, sa, sb)
+      call both_sides()
+      nbeyond_a = count(ra%pen > ra%tol)
+      nbeyond_b = 0
+      if (.not. self) nbeyond_b = count(rb%pen > rb%tol)
+      if (nbeyond_a + nbeyond_b == 0) then
+        call keep_within()
+        cycle
+      end if
+      call deepest_of()
+      if (par_rank() == 0) then
+        write(text, '(a,i0,a,i0,a,i0,a,3es13.5,a,es10.3,a,es10.3,a,4(i0,a))') &
+            'impact3d: '//where//': initial penetration beyond the tolerance: ', &
+            nbeyond_a, ' nodes of surface a, ', nbeyond_b, ' of surface b; deepest node ', &
+            deepest_node, ' at (', where_x, ') by ', deepest, ' (tolerance ', &
+            tolerance_of(deepest_node), '); depth/tolerance 1-2: ', bins(1), ', 2-4: ', &
+            bins(2), ', 4-8: ', bins(3), ', > 8: ', bins(4), ''
+        write(output_unit, '(a)') trim(text)
+      end if
+      select case (specs(k)%initial_penetration)
+      case ('error')
+        write(text, '(a,i0,a,i0,a,3es13.5,a,es10.3,a)') &
+            ': initial_penetration: ', nbeyond_a + nbeyond_b, &
+            ' node(s) penetrate the other surface at set-up; the deepest, node ', deepest_node, &
+            ' at (', where_x, '), by ', deepest, '; move the parts apart, or set '// &
+            'initial_penetration = ''adjust'' (move them onto the other surface) or '// &
+            '''ignore'' (keep the overlap)'
+        call status%add(where//trim(text))
+      case ('adjust')
+        ! Move side a's nodes beyond the tolerance onto the other surface.
+        moved = 0.0_rk
+        do i = 1, sa%nnode
+          if (.not. ra%pen(i) > ra%tol(i)) cycle
+          global%coordinates(:, sa%nodes(i)) = global%coordinates(:, sa%nodes(i)) + &
+              (-ra%gap(i)) * ra%inward(:, i)
+          moved = max(moved, -ra%gap(i))
+        end do
+        call both_sides()
+        call keep_within()
+        if (par_rank() == 0) write(output_unit, '(a,i0,a,es10.3)') 'impact3d: '//where// &
+            ': initial_penetration = ''adjust'': moved ', nbeyond_a, &
+            ' node(s) of surface a onto surface b, largest move ', moved
+        if (self .or. nbeyond_b == 0) cycle
+        if (par_rank() == 0 .and. count(rb%pen > rb%tol) > 0) write(output_unit, '(a,i0,a)') &
+            'warning: '//where//': ', count(rb%pen > rb%tol), ' node(s) of surface '// &
+            'b still penetrate surface a after the adjustment; kept as offsets'
+        offsets(k)%b = max(offsets(k)%b, rb%pen)
+      case default
+        if (par_rank() == 0) write(output_unit, '(a,es10.3,a)') 'warning: '//where// &
+            ': initial_penetration = ''ignore'': the overlap (deepest ', deepest, &
+            ') is kept as an offset and held, not pushed out'
+        offsets(k)%a = ra%pen
+        if (.not. self) offsets(k)%b = rb%pen
+      end select
+    end do
+
+  contains
+
+    subroutine both_sides()
+      real(rk), allocatable :: zero_a(:), zero_b(:)
+      allocate(zero_a(sa%nnode), zero_b(sb%nnode))
+      zero_a = 0.0_rk
+      zero_b = 0.0_rk
+      call audit_side(global%coordinates, sa, sb, self, reach, specs(k)%penetration_tolerance, &
+          zero_a, [(.true., i = 1, sa%nnode)], ra)
+      if (.not. self) call audit_side(global%coordinates, sb, sa, .false., reach, &
+          specs(k)%penetration_tolerance, zero_b, [(.true., i = 1, sb%nnode)], rb)
+    end subroutine both_sides
+
+    !> Penetration within the tolerance: an offset under every option.
+    subroutine keep_within()
+      where (ra%pen <= ra%tol) offsets(k)%a = ra%pen
+      if (.not. self) then
+        where (rb%pen <= rb%tol) offsets(k)%b = rb%pen
+      else
+        offsets(k)%b = offsets(k)%a
+      end if
+    end subroutine keep_within
+
+    subroutine deepest_of()
+      integer :: j
+      deepest = -1.0_rk
+      bins = 0
+      do j = 1, sa%nnode
+        if (ra%pen(j) > ra%tol(j)) call add(ra%pen(j), ra%tol(j), int(sa%nodes(j)))
+      end do
+      if (.not. self) then
+        do j = 1, sb%nnode
+          if (rb%pen(j) > rb%tol(j)) call add(rb%pen(j), rb%tol(j), int(sb%nodes(j)))
+        end do
+      end if
+      where_x = global%coordinates(:, deepest_node)
+    end subroutine deepest_of
+
+    subroutine add(pen, tol, node)
+      real(rk) :: r
+      real(rk), intent(in) :: pen, tol
+      integer, intent(in) :: node
+      r = pen / tol
+      if (r < 2.0_rk) then
+        bins(1) = bins(1) + 1
+      else if (r < 4.0_rk) then
+        bins(2) = bins(2) + 1
+      else if (r < 8.0_rk) then
+        bins(3) = bins(3) + 1
+      else
+        bins(4) = bins(4) + 1
+      end if
+      if (pen > deepest) then
+        deepest = pen
+        deepest_node = node
+      end if
+    end subroutine add
+
+    real(rk) function tolerance_of(node) result(t)
+      integer, intent(in) :: node
+      integer :: j
+      t = 0.0_rk
+      do j = 1, sa%nnode
+        if (sa%nodes(j) == node) t = ra%tol(j)
+      end do
+      if (.not. self) then
+        do j = 1, sb%nnode
+          if (sb%nodes(j) == node) t = rb%tol(j)
+        end do
+      end if
+    end function tolerance_of
+
+  end subroutine contact_initial
+
+  !> The audit of every interface at positions x (local mesh nodes; the
+  !> owned ones are read): history columns, the per-node smallest gap for
+  !> the dumps, a rate-limited warning, and ct%stop_run for on_penetration =
+  !> 'stop'. Collective.
+  subroutine contact_audit_run(ct, x, cycle, time)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x(:, :)
+    integer(i8), intent(in) :: cycle
+    real(rk), intent(in) :: time
+    real(rk), allocatable :: xall(:, :), flat(:), rec(:), all(:, :)
+    type(side_t) :: ra, rb
+    logical, allocatable :: sel_a(:), sel_b(:)
+    real(rk) :: sums(4), worst(2), deep
+    integer :: k, i, c, o, r, unheld, deep_node
+    character(len=600) :: text
+
+    if (ct%npair == 0) return
+    ! Every contact node's position on every rank (one owner each: exact).
+    allocate(flat(3 * ct%nall))
+    flat = 0.0_rk
+    do i = 1, ct%nown
+      c = ct%own_contact(i)
+      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
+    end do
+    call par_sum_array(flat)
+    xall = reshape(flat, [3, ct%nall])
+    ct%gap_own = huge(1.0_rk)
+    allocate(rec(6), all(6, par_size()))
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        allocate(sel_a(p%all_a%nnode), sel_b(p%all_b%nnode))
+        do i = 1, p%all_a%nnode
+          sel_a(i) = ct%own_of(p%all_a%nodes(i)) > 0
+        end do
+        do i = 1, p%all_b%nnode
+          sel_b(i) = ct%own_of(p%all_b%nodes(i)) > 0
+        end do
+        call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
+            p%spec%penetration_tolerance, p%offset(p%all_a%nodes), sel_a, ra)
+        if (.not. p%self) call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
+            p%spec%penetration_tolerance, p%offset(p%all_b%nodes), sel_b, rb)
+        worst = 0.0_rk
+        sums = 0.0_rk
+        unheld = 0
+        deep = -1.0_rk
+        deep_node = 0
+        do i = 1, p%all_a%nnode
+          if (.not. sel_a(i)) cycle
+          c = p%all_a%nodes(i)
+          o = ct%own_of(c)
+          ct%gap_own(o) = min(ct%gap_own(o), ra%gap(i))
+          worst(1) = max(worst(1), ra%pen(i))
+          if (ra%pen(i) > ra%tol(i)) then
+            sums(1) = sums(1) + 1.0_rk
+            if (.not. p%was_active(o)) sums(3) = sums(3) + 1.0_rk
+            call deeper(ra%pen(i), c)
+          end if
+        end do
+        if (.not. p%self) then
+          do i = 1, p%all_b%nnode
+            if (.not. sel_b(i)) cycle
+            c = p%all_b%nodes(i)
+            o = ct%own_of(c)
+            ct%gap_own(o) = min(ct%gap_own(o), rb%gap(i))
+            worst(2) = max(worst(2), rb%pen(i))
+            if (rb%pen(i) > rb%tol(i)) then
+              sums(2) = sums(2) + 1.0_rk
+              if (p%method == METHOD_DLM .and. .not. p%was_active(o)) sums(3) = sums(3) + 1.0_rk
+              call deeper(rb%pen(i), c)
+            end if
+          end do
+        end if
+        call par_sum_array(sums)
+        ! The deepest violation over the ranks (ties to the lower node).
+        rec = [deep, real(deep_node, rk), 0.0_rk, 0.0_rk, 0.0_rk, worst(1)]
+        if (deep_node > 0) rec(3:5) = xall(:, deep_node)
+        call par_allgather(rec, all)
+        worst(1) = maxval(all(6, :))
+        rec(6) = worst(2)
+        call par_allgather(rec, all)
+        worst(2) = maxval(all(6, :))
+        r = 0
+        do i = 1, par_size()
+          if (all(1, i) < 0.0_rk) cycle
+          if (r == 0) then
+            r = i
+          else if (all(1, i) > all(1, r) .or. (all(1, i) == all(1, r) .and. &
+              all(2, i) < all(2, r))) then
+            r = i
+          end if
+        end do
+        if (p%self) then
+          worst(2) = worst(1)
+          sums(2) = sums(1)
+        end if
+        p%diag(DIAG_AUDIT:DIAG_AUDIT + 4) = [worst(1), worst(2), sums(1), sums(2), sums(3)]
+        if (r > 0) call violation(p, p%spec%name, all(:, r), nint(sums(1) + sums(2)))
+        deallocate(sel_a, sel_b)
+      end associate
+    end do
+    where (ct%gap_own == huge(1.0_rk)) ct%gap_own = 0.0_rk
+    ct%audit_due = .false.
+    ct%audited_cycle = cycle
+
+  contains
+
+    subroutine deeper(pen, node)
+      real(rk), intent(in) :: pen
+      integer, intent(in) :: node
+      if (pen > deep .or. (pen == deep .and. node < deep_node)) then
+        deep = pen
+        deep_node = node
+      end if
+    end subroutine deeper
+
+    !> A violation: a warning at most once per WARN_EVERY cycles (with the
+    !> count since the last one), or the stop request.
+    subroutine violation(p, name, worst_rec, nodes)
+      type(interface_t), intent(inout) :: p
+      character(len=*), intent(in) :: name
+      real(rk), intent(in) :: worst_rec(6)
+      integer, intent(in) :: nodes
+      integer(i8) :: gid
+      gid = ct%all_gid(nint(worst_rec(2)))
+      if (p%spec%on_penetration == 'stop') then
+        ct%stop_run = .true.
+        if (par_rank() == 0) then
+          write(text, '(a,i0,a,i0,a,3es13.5,a,es10.3,a,i0,a,es12.5)') &
+              'error: &contact '''//trim(name)//''': ', nodes, &
+              ' node(s) penetrate beyond the tolerance (on_penetration = ''stop''); the '// &
+              'deepest, node ', gid, ' at (', worst_rec(3:5), '), by ', worst_rec(1), &
+              ', in cycle ', cycle, ', time ', time
+          write(error_unit, '(a)') trim(text)
+          flush(error_unit)
+        end if
+        return
+      end if
+      p%warn_skipped = p%warn_skipped + 1
+      if (cycle - p%warn_cycle < WARN_EVERY) return
+      if (par_rank() == 0) then
+        write(text, '(a,i0,a,i0,a,3es13.5,a,es10.3,a,i0,a,es12.5,a,i0,a)') &
+            'warning: &contact '''//trim(name)//''': ', nodes, &
+            ' node(s) penetrate beyond the tolerance; the deepest, node ', gid, ' at (', &
+            worst_rec(3:5), '), by ', worst_rec(1), ', cycle ', cycle, ', t = ', time, &
+            ' (', p%warn_skipped, ' audit(s) with violations since the last warning)'
+        write(error_unit, '(a)') trim(text)
+        flush(error_unit)
+      end if
+      p%warn_cycle = cycle
+      p%warn_skipped = 0
+    end subroutine violation
+
+  end subroutine contact_audit_run
+
+  !> End of a step: per interface, the contact force on surface a and the
+  !> work of the step (summed over the ranks) into the history columns.
+  !> Collective.
+  subroutine contact_step_end(ct)
+    type(contact_t), intent(inout) :: ct
+    real(rk), allocatable :: sums(:)
+    integer :: k, i
+    if (ct%npair == 0) return
+    allocate(sums(4 * ct%npair))
+    sums = 0.0_rk
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        do i = 1, ct%nown
+          if (p%own_in_a(i)) sums(4 * k - 3:4 * k - 1) = sums(4 * k - 3:4 * k - 1) + &
+              p%fc_own(:, i)
+        end do
+        sums(4 * k) = p%work_step
+      end associate
+    end do
+    call par_sum_array(sums)
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        p%work = p%work + sums(4 * k)
+        p%diag(DIAG_FORCE:DIAG_FORCE + 2) = sums(4 * k - 3:4 * k - 1)
+        p%diag(DIAG_WORK) = p%work
+      end associate
+    end do
+  end subroutine contact_step_end
+
+end module contact_monitor
