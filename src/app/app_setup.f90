@@ -115,6 +115,8 @@ contains
           call mesh_make_box(spec%box, piece, status)
         end select
         if (.not. status%ok()) return
+        if (spec%rotation_angle /= 0.0_rk) call rotate(piece%coordinates, &
+            spec%rotation_axis, spec%rotation_angle)
         do n = 1, piece%nnode
           piece%coordinates(:, n) = piece%coordinates(:, n) + spec%offset
         end do
@@ -149,6 +151,23 @@ contains
     call boundary_setup(config%boundaries, global, mesh, bc, status)
     call check_contacts(config, global, status)
   end subroutine setup_mesh
+
+  !> Rotate points about the origin by angle (degrees, right-handed) about
+  !> axis (Rodrigues' formula).
+  subroutine rotate(x, axis, angle)
+    real(rk), intent(inout) :: x(:, :)
+    real(rk), intent(in) :: axis(3), angle
+    real(rk) :: k(3), c, s, p(3)
+    integer :: n
+    k = axis / norm2(axis)
+    c = cos(angle * acos(-1.0_rk) / 180.0_rk)
+    s = sin(angle * acos(-1.0_rk) / 180.0_rk)
+    do n = 1, size(x, 2)
+      p = x(:, n)
+      x(:, n) = p * c + s * [k(2) * p(3) - k(3) * p(2), k(3) * p(1) - k(1) * p(3), &
+          k(1) * p(2) - k(2) * p(1)] + k * dot_product(k, p) * (1.0_rk - c)
+    end do
+  end subroutine rotate
 
   !> &contact pairs: their surfaces must be face sets of the mesh; contact
   !> enforcement (DAM, DLM) is not in this build, so a deck asking for it stops

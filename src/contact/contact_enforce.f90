@@ -71,6 +71,7 @@ module contact_enforce
   use mesh_local, only: mesh_t
   use contact_geometry, only: segment_facets, quad_unit_normal, triangle_unit_normal, &
       triangle_overlap, triangle_overlap_2d, triangle_vector_area, SEGMENT_FACET_COUNT, &
+      OVERLAP_VERTICES, &
       FACET_CORNER, tangent_basis, segment_box, project_facets, facet_box, boxes_meet, covered, &
       plane_offset, bilinear_shape
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
@@ -114,6 +115,10 @@ module contact_enforce
   !> segment pair (relative size tilt x penetration / zone, ~1e-12 on the
   !> mirror test). They carry less than this share of a node's force.
   real(rk), parameter :: AREA_TOLERANCE = 1.0e-8_rk
+  !> Reals per DLM facet pair: shares wh, wd, penetration at the overlap
+  !> centroid, overlap area, normal (3), excess over the recovery allowance,
+  !> penetration at the overlap's deepest vertex (the gate).
+  integer, parameter :: FP_REALS = 9
 
 contains
 
@@ -559,7 +564,8 @@ contains
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, wh, wd, t1(3), t2(3), origin(3)
-    real(rk) :: allowance, kept
+    real(rk) :: allowance, kept, deepest, poly(2, OVERLAP_VERTICES)
+    integer :: npoly
     real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT), seg_a(4), seg_b(4)
     real(rk) :: a2(2, 3, SEGMENT_FACET_COUNT), b2(2, 3, SEGMENT_FACET_COUNT), centre2(2)
     integer :: m, sa, sb, i, j, nodeh, noded
@@ -568,7 +574,8 @@ contains
     call geometry_update(ct%x, p%a, p%ga)
     call geometry_update(ct%x, p%b, p%gb)
     p%nfp = 0
-    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(8, 64), p%fp_key(64))
+    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_real(FP_REALS, 64), &
+        p%fp_key(64))
     associate(ga => p%ga, gb => p%gb)
       do m = 1, size(p%segment_pairs, 2)
         sa = p%segment_pairs(1, m)
@@ -610,9 +617,9 @@ contains
           do j = 1, SEGMENT_FACET_COUNT
             if (.not. boxes_meet(box_a(:, i), box_b(:, j))) cycle
             if (a_hits) then
-              call triangle_overlap_2d(a2(:, :, i), b2(:, :, j), s0, centre2)
+              call triangle_overlap_2d(a2(:, :, i), b2(:, :, j), s0, centre2, poly, npoly)
             else
-              call triangle_overlap_2d(b2(:, :, j), a2(:, :, i), s0, centre2)
+              call triangle_overlap_2d(b2(:, :, j), a2(:, :, i), s0, centre2, poly, npoly)
             end if
             if (.not. s0 > AREA_TOLERANCE * min(ga%area(i, sa), gb%area(j, sb))) cycle
             centroid = origin + centre2(1) * t1 + centre2(2) * t2
@@ -621,6 +628,8 @@ contains
               noded = p%b%segments(FACET_CORNER(j), sb)
               pen = plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), centroid, nrm) - &
                   plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), centroid, nrm)
+              deepest = deepest_of(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), &
+                  gb%facets(:, 1, j, sb), gb%normal(:, j, sb))
               wh = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(nodeh)
               wd = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(noded)
             else
@@ -628,6 +637,8 @@ contains
               noded = p%a%segments(FACET_CORNER(i), sa)
               pen = plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), centroid, nrm) - &
                   plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), centroid, nrm)
+              deepest = deepest_of(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), &
+                  ga%facets(:, 1, i, sa), ga%normal(:, i, sa))
               wh = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(nodeh)
               wd = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(noded)
             end if
@@ -638,25 +649,46 @@ contains
             if (pen - kept > 0.5_rk * p%size) cycle
             call add_facet_pair(p, nodeh, noded, wh, wd, pen - kept, s0, nrm, &
                 max(pen - kept - allowance, 0.0_rk), &
-                p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8))
+                p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8), deepest - kept)
           end do
         end do
       end do
     end associate
+
+  contains
+
+    !> Penetration at the deepest vertex of the overlap polygon (poly, in
+    !> the plane of origin, t1, t2): the contact gate. On a convex edge or
+    !> corner driven into a face, the facets beside it meet the face at an
+    !> angle, and their overlap reaches the face at the edge while its
+    !> centroid is still open: gating on the centroid let the edge sink a
+    !> fifth of a zone before any force.
+    real(rk) function deepest_of(ph, nh, pd, nd) result(d)
+      real(rk), intent(in) :: ph(3), nh(3), pd(3), nd(3) !< a point and normal of each facet
+      real(rk) :: v(3)
+      integer :: iv
+      d = pen
+      do iv = 1, npoly
+        v = origin + poly(1, iv) * t1 + poly(2, iv) * t2
+        d = max(d, plane_offset(ph, nh, v, nrm) - plane_offset(pd, nd, v, nrm))
+      end do
+    end function deepest_of
+
   end subroutine dlm_geometry
 
   !> Append one facet pair to the interface's cache, growing it when full.
-  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, excess, key)
+  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, excess, key, gate)
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: nodeh, noded
     real(rk), intent(in) :: wh, wd, pen, s0, nrm(3)
     real(rk), intent(in) :: excess !< penetration beyond the recovery allowance (>= 0)
     integer(i8), intent(in) :: key !< global order: segment pair, facet of a, facet of b
+    real(rk), intent(in) :: gate !< penetration at the overlap's deepest vertex
     integer, allocatable :: grown_node(:, :)
     integer(i8), allocatable :: grown_key(:)
     real(rk), allocatable :: grown_real(:, :)
     if (p%nfp == size(p%fp_node, 2)) then
-      allocate(grown_node(2, 2 * p%nfp), grown_real(8, 2 * p%nfp), grown_key(2 * p%nfp))
+      allocate(grown_node(2, 2 * p%nfp), grown_real(FP_REALS, 2 * p%nfp), grown_key(2 * p%nfp))
       grown_node(:, :p%nfp) = p%fp_node(:, :p%nfp)
       grown_real(:, :p%nfp) = p%fp_real(:, :p%nfp)
       grown_key(:p%nfp) = p%fp_key(:p%nfp)
@@ -666,7 +698,7 @@ contains
     end if
     p%nfp = p%nfp + 1
     p%fp_node(:, p%nfp) = [nodeh, noded]
-    p%fp_real(:, p%nfp) = [wh, wd, pen, s0, nrm, excess]
+    p%fp_real(:, p%nfp) = [wh, wd, pen, s0, nrm, excess, gate]
     p%fp_key(p%nfp) = key
   end subroutine add_facet_pair
 
@@ -712,7 +744,8 @@ contains
         if (sweep == 1) then
           fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
           fd_ = dot_product(ct%f(:, noded), nrm) * wd
-          pen_free = pen + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
+          ! The gate: the overlap's deepest vertex (dlm_geometry).
+          pen_free = p%fp_real(9, q) + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
           gated(q) = pen_free > 0.0_rk .or. p%form == FORM_COORDINATE
           select case (p%form)
           case (FORM_COORDINATE)

@@ -48,6 +48,8 @@ module contact_geometry
   !> Room for the polygon clipped by three edges: each clip at most doubles the count
   !> (a convex polygon gains one vertex; the bound also covers round-off).
   integer, parameter :: MAX_VERTICES = 24
+  !> Room a caller gives triangle_overlap_2d for the overlap polygon.
+  integer, parameter, public :: OVERLAP_VERTICES = MAX_VERTICES
 
 contains
 
@@ -188,15 +190,19 @@ contains
   !> Area and centroid of the overlap of two triangles already projected on a
   !> plane (2D coordinates, any orientation). Zero area and the centroid (0, 0)
   !> when either triangle is degenerate.
-  pure subroutine triangle_overlap_2d(a2, b2, area, centre2)
+  pure subroutine triangle_overlap_2d(a2, b2, area, centre2, vertices, nvertex)
     real(rk), intent(in) :: a2(2, 3) !< the clipper
     real(rk), intent(in) :: b2(2, 3) !< the clipped
     real(rk), intent(out) :: area, centre2(2)
+    !> the overlap polygon's vertices (2, >= OVERLAP_VERTICES) and their number
+    real(rk), intent(out), optional :: vertices(:, :)
+    integer, intent(out), optional :: nvertex
     real(rk) :: a(2, 3), b(2, 3), polygon(2, MAX_VERTICES)
     integer :: count
     logical :: valid
     area = 0.0_rk
     centre2 = 0.0_rk
+    if (present(nvertex)) nvertex = 0
     a = a2
     b = b2
     call make_counter_clockwise(a, valid)
@@ -205,6 +211,10 @@ contains
     if (.not. valid) return
     call clip_triangle(b, a, polygon, count)
     call polygon_area_centroid(polygon, count, area, centre2)
+    if (present(vertices) .and. present(nvertex)) then
+      nvertex = count
+      vertices(:, :count) = polygon(:, :count)
+    end if
   end subroutine triangle_overlap_2d
 
   !> Orthonormal tangents with tangent1 x tangent2 = normal (normal of unit length).

@@ -96,7 +96,7 @@ module contact_state
     integer :: nfp = 0 !< DLM facet pairs of the cycle
     integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
     integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
-    real(rk), allocatable :: fp_real(:, :) !< (8, nfp) shares wh, wd, pen, s0, normal, excess
+    real(rk), allocatable :: fp_real(:, :) !< (9, nfp) shares wh, wd, pen, s0, normal, excess, gate
     type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
     type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
     real(rk), allocatable :: rbf(:, :) !< DAM: (4, nprimary) put-back weights
@@ -115,7 +115,7 @@ module contact_state
     real(rk), allocatable :: fc_own(:, :) !< (3, nown) the interface's force (corrector)
     real(rk) :: work_step = 0.0_rk !< this rank's contact work of the interface, last step
     real(rk) :: work = 0.0_rk !< contact work of the interface so far (all ranks)
-    integer(i8) :: warn_cycle = -huge(1_i8) !< cycle of the last audit warning
+    integer(i8) :: warn_cycle = -1000000000_i8 !< cycle of the last audit warning (none yet)
     integer :: warn_skipped = 0 !< violations since that warning
   end type interface_t
 

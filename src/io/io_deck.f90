@@ -60,6 +60,8 @@ module io_deck
     type(box_minus_ball_spec_t) :: box_minus_ball
     character(len=PATH_LEN) :: mesh_file = ''
     real(rk) :: offset(3) = 0.0_rk !< translation applied to the part
+    real(rk) :: rotation_axis(3) = 0.0_rk !< rotation of the part about the origin (before offset)
+    real(rk) :: rotation_angle = 0.0_rk !< degrees, right-handed about rotation_axis
     character(len=NAME_LEN) :: block = '' !< every zone of the part in this &block
   end type mesh_part_t
 
@@ -109,7 +111,7 @@ contains
           'ratio_y', 'ratio_z', 'skew_amplitude', 'perturb', 'radius', 'length', 'z0', 'sector', &
           'n_core', 'n_radial', 'n_axial', 'axial_ratio', 'core_fraction', 'ri', 'ro', 'n_theta', &
           'axis', 'origin', 'radial_reference', 'n_patch', 'radial_ratio', 'file', 'name', &
-          'offset', 'block']
+          'offset', 'block', 'rotation_axis', 'rotation_angle']
     case ('material')
       keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma', 'library', 'rho0', 'c0', 's1', &
           'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress']
@@ -454,14 +456,15 @@ contains
     integer :: n_core, n_radial, n_axial, n_theta, n_patch
     character(len=PATH_LEN) :: file
     character(len=NAME_LEN) :: name, block
-    real(rk) :: offset(3)
+    real(rk) :: offset(3), rotation_axis(3), rotation_angle
     character(len=16) :: where
     integer :: ios
     character(len=256) :: msg
     logical :: box_keys, curved_keys, exists
     namelist /mesh/ type, x, y, z, nx, ny, nz, ratio_x, ratio_y, ratio_z, skew_amplitude, perturb, &
         radius, length, z0, sector, n_core, n_radial, n_axial, axial_ratio, core_fraction, ri, ro, &
-        n_theta, axis, origin, radial_reference, n_patch, radial_ratio, file, name, offset, block
+        n_theta, axis, origin, radial_reference, n_patch, radial_ratio, file, name, offset, block, &
+        rotation_axis, rotation_angle
 
     type = 'box'
     x = UNSET
@@ -495,6 +498,8 @@ contains
     file = ''
     name = ''
     offset = 0.0_rk
+    rotation_axis = 0.0_rk
+    rotation_angle = 0.0_rk
     block = ''
     where = '&mesh'
     if (nparts > 1) write(where, '(a,i0,a)') '&mesh(', index, ')'
@@ -504,7 +509,14 @@ contains
     part%mesh_type = to_lower(type)
     part%name = name
     part%offset = offset
+    part%rotation_axis = rotation_axis
+    part%rotation_angle = rotation_angle
     part%block = block
+    if (.not. (abs(rotation_angle) < huge(1.0_rk))) call status%add(trim(where)// &
+        ': rotation_angle: must be finite (degrees)')
+    if (rotation_angle /= 0.0_rk .and. .not. norm2(rotation_axis) > 0.0_rk) &
+        call status%add(trim(where)//': rotation_axis: required with rotation_angle '// &
+        '(a nonzero vector)')
     if (nparts > 1 .and. len_trim(name) == 0) call status%add(trim(where)//': name: required '// &
         'when the deck has several &mesh parts (it prefixes the part''s face sets)')
     if (.not. all(abs(offset) < huge(1.0_rk))) call status%add(trim(where)//': offset: '// &

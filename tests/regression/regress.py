@@ -96,6 +96,10 @@ def read_history(workdir):
     with open(os.path.join(workdir, "history.txt")) as f:
         header = f.readline().split()[1:]
         rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+    # The row of cycle 0 (the initial state, no step taken) is left out: the
+    # checks here are on the steps.
+    if len(rows) and rows[0, 0] == 0:
+        rows = rows[1:]
     return header, rows
 
 
