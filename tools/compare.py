@@ -9,11 +9,11 @@ Usage:
                [--gamma G] [--rho0 R] [--e0 E] [--u0 U]      (sedov, noh)
                [--origin X Y Z] [--shock-threshold R] [--bin-width W]
 
-Problems and defaults (PROBLEMS.md section A):
+Problems and defaults (docs/problems.md, section A):
     sod       Riemann problem along x: left (rho, u, p) = (1, 0, 1), right
               (0.125, 0, 0.1), interface x0 = 0.5, gamma 1.4 on both sides.
     riemann2  the same data with gamma_left = 1.4, gamma_right = 5/3 (the
-              two-material Sod of PROBLEMS.md D.1).
+              two-material Sod of docs/problems.md, D1).
     sedov     spherical blast, gamma 1.4, rho0 1, full-sphere energy
               E0 = 0.851072 (shock at r = 1 at t = 1), origin (0, 0, 0).
     noh       spherical implosion, gamma 5/3, rho0 1, u0 1 inward.

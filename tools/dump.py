@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Read (and, for tests, write) impact3d HDF5 dumps.
 
-Layout (docs: DESIGN.md section 6; root attribute `format_version`):
+Layout (docs: docs/design.md, section 6; root attribute `format_version`):
 
     root attributes   time, cycle, title, units, format_version
     /mesh/coordinates nnode x 3      /mesh/connectivity nzone x 8 (0-based)

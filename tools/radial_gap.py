@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Penetration across a curved contact interface that is star-shaped about
-the origin (the D2 curved split of PROBLEMS.md: a ball octant inside the box
+the origin (the D2 curved split of docs/problems.md: a ball octant inside the box
 minus the ball, meshed apart on the sphere r = RADIUS).
 
 The interface nodes of each side are the nodes of its block that lie on the

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Axial stress on the axis near the Al / steel interface (PROBLEMS.md D3).
+"""Axial stress on the axis near the Al / steel interface (docs/problems.md, D3).
 
 Usage: analyse.py RUN_DIRECTORY [--window 0.3 1.2] [--tol 0.03]
 

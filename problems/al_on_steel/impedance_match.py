@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Semi-analytic 1D elastic-plastic impedance match for PROBLEMS.md D3.
+"""Semi-analytic 1D elastic-plastic impedance match for docs/problems.md, D3.
 
 Al 6061-T6 at 0.1 cm/us onto 304 SS at rest, uniaxial strain, with the data and
 the models of the code (src/eos/eos_mie_gruneisen.f90, src/material/

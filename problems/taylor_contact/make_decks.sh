@@ -1,5 +1,5 @@
 #!/bin/sh
-# Writes the Taylor-anvil contact decks (PROBLEMS.md D7): case 1 and 2, steel
+# Writes the Taylor-anvil contact decks (docs/problems.md, D7): case 1 and 2, steel
 # and 100x stiffer anvil, DLM and DAM, coarse and fine rod mesh. Run from this
 # directory; the decks are committed, this only documents how they were made.
 set -e
@@ -19,7 +19,7 @@ for case in 1 2; do
         if [ $mesh = coarse ]; then rod="n_core = 5, n_radial = 4, n_axial = 60"; an="nx = 16, ny = 16, nz = 10"
         else rod="n_core = 8, n_radial = 6, n_axial = 96"; an="nx = 24, ny = 24, nz = 15"; fi
         cat > taylor_case${case}_${anvil}_${method}_${mesh}.nml <<DECK
-! Taylor anvil case $case of PROBLEMS.md D7 with contact ($(echo $method | tr a-z A-Z)): OFHC copper rod,
+! Taylor anvil case $case (docs/problems.md, D7) with contact ($(echo $method | tr a-z A-Z)): OFHC copper rod,
 ! radius $r cm, length $l cm, at $v cm/us onto a
 ! $what,
 ! quarter 3 x 3 x 2 cm (graded: smallest zones under the rod) resting on a

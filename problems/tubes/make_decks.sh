@@ -1,5 +1,5 @@
 #!/bin/sh
-# Writes the crossed-tube decks (PROBLEMS.md D4, D5): same and 10x stiffer
+# Writes the crossed-tube decks (docs/problems.md, D4, D5): same and 10x stiffer
 # struck tube, DLM and DAM. The decks are committed; this records how.
 set -e
 for variant in same stiff; do
@@ -16,7 +16,7 @@ for variant in same stiff; do
   for method in dlm dam; do
     M=$(echo $method | tr a-z A-Z)
     cat > tubes_${variant}_${method}.nml <<DECK
-! Two crossed tubes (PROBLEMS.md D4/D5), $M, $what: thick-walled Al 6061-T6
+! Two crossed tubes (docs/problems.md, D4/D5), $M, $what: thick-walled Al 6061-T6
 ! tubes (outer radius 1 cm, wall 0.2 cm, length 8 cm), axes crossed at 90
 ! degrees; tube b (axis y, above) moves at 0.002 cm/us (20 m/s) along -z onto
 ! tube a (axis x, at rest); initial gap 0.05 cm. Quarter symmetry (x >= 0,

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Writes the parallel-axis tube decks (PROBLEMS.md D4 variant, mirror test):
+# Writes the parallel-axis tube decks (docs/problems.md, D4 variant, mirror test):
 # two identical Al tubes side by side hitting each other at equal and opposite
 # speeds through contact (DLM, DAM), and one of them on a rigid plane wall at
 # the mirror plane z = 0. The decks are committed; this records how.
@@ -7,7 +7,7 @@
 set -e
 common_header() {
   cat <<HEAD
-! Parallel-axis tubes (PROBLEMS.md D4 variant, mirror test): thick-walled Al
+! Parallel-axis tubes (docs/problems.md, D4 variant, mirror test): thick-walled Al
 ! 6061-T6 tubes (outer radius 1 cm, wall 0.2 cm, length 8 cm), axes along x.
 ! Mie-Gruneisen + Steinberg-Guinan (library data), as tubes_same_*.
 ! Quarter model: symmetry planes x = 0 (mid-length) and y = 0 (through the

@@ -169,9 +169,9 @@ contains
     end do
   end subroutine rotate
 
-  !> &contact pairs: their surfaces must be face sets of the mesh; contact
-  !> enforcement (DAM, DLM) is not in this build, so a deck asking for it stops
-  !> here instead of running without it.
+  !> &contact pairs: their surfaces must be face sets of the mesh, checked
+  !> here with the other set-up problems before any work; contact_setup
+  !> (src/contact) builds the interfaces afterwards.
   subroutine check_contacts(config, global, status)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(in) :: global

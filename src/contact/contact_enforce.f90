@@ -1,18 +1,20 @@
 !> Contact enforcement: DAM (discrete accurate matching, master-slave) and DLM
 !> (discrete Lagrangian multiplier, symmetric) of Jia, Gong, Zhang & Liu
-!> (J. Comput. Phys. 267 (2014) 247-285), as written in CONTACT.md sections 3-4.
+!> (J. Comput. Phys. 267 (2014) 247-285), as described in docs/contact.md, sections 5-6.
 !> This is the narrow interface between the hydro state and contact.
 !>
 !> Where it sits. In each stage, after the hydro forces f of the stage are
 !> known and before v = v^n + h (f + fc)/m (h = dt/2 in the predictor, dt in
 !> the corrector): contact_apply returns the contact force fc of every owned
 !> contact node, added to the node force, so the boundary conditions
-!> re-imposed by the velocity update come after it. CONTACT.md 4b puts contact
-!> in the corrector only; the rigid wall acts in both stages, and a contact
-!> that skips the predictor lets the half-step geometry interpenetrate, so the
-!> contact pressure lags half a step and the mirror test fails (2e-3 of the
-!> body size on a Taylor rod). The predictor call does no search; only the
-!> corrector's forces do work and give the diagnostics.
+!> re-imposed by the velocity update come after it. The original plan put
+!> contact in the corrector only; the rigid wall acts in both stages, and a
+!> contact that skips the predictor lets the half-step geometry interpenetrate,
+!> so the contact pressure lags half a step and the mirror test fails (2e-3 of
+!> the body size on a Taylor rod). The global search, when due, and the
+!> geometry at x^n run in the predictor's call; the corrector reuses them, and
+!> only the corrector's forces do work and give the diagnostics
+!> (docs/contact.md, section 4).
 !> Both methods are expressed as a contact force: DLM's pair forces directly,
 !> DAM's corrected velocities v' as fc = m (v' - v^n)/dt - f. The work of the
 !> contact forces over the step (trapezoid velocity) is the contact work of
@@ -27,7 +29,7 @@
 !> surfaces a, b and pair lists use local numbers, so the order of every loop
 !> follows global ids.
 !>
-!> Closing condition (both methods, CONTACT.md sections 3.7 and 4). A pair is
+!> Closing condition (both methods, docs/contact.md section 4). A pair is
 !> enforced when the free motion (hydro forces only) would close its gap by
 !> the end of the step: pen_free = pen + dt w + dt^2/2 (ah - ad) > 0, w the
 !> approach velocity and ah - ad the relative free acceleration along the
@@ -421,7 +423,7 @@ contains
 
   !> DAM at the owners, first round: the exchanged mass, force and momentum
   !> of the owned nodes summed in key order, then the velocities: free, and
-  !> for master nodes the matched normal component (CONTACT.md 3.3-3.5).
+  !> for master nodes the matched normal component (docs/contact.md, 6).
   subroutine match_masters(ct, r, v_old, force, dt, vmatch, touched)
     type(contact_t), intent(in) :: ct
     type(records_t), intent(in) :: r
@@ -939,7 +941,7 @@ contains
 
   !> DAM at the parts, first round: which slave nodes are enforced, and the
   !> exchange of mass, force and momentum over the facet overlaps of each
-  !> enforced slave with the master facets (CONTACT.md 3.3-3.5), as records
+  !> enforced slave with the master facets (docs/contact.md, 6), as records
   !> for the owners of both nodes, keyed (slave, entry, side) in the order of
   !> a one-rank run.
   subroutine dam_exchange(ct, p, k, dt, final, out)
@@ -1014,7 +1016,7 @@ contains
 
   !> DAM at the parts, second round: the put-back-on of each enforced slave's
   !> normal velocity by RBF interpolation of the matched velocities vm of its
-  !> master segment's nodes (CONTACT.md 3.6); tangential motion is free
+  !> master segment's nodes (docs/contact.md, 6); tangential motion is free
   !> (frictionless). vm are the velocities after the master matching and
   !> before any put-back (in self-contact a master node may be a slave too).
   subroutine dam_put_back(ct, p, k, dt, vm, out)

@@ -1,10 +1,10 @@
-!> Contact on RCB parts (DESIGN.md 5, CONTACT.md 5): the global search run
+!> Contact on RCB parts (docs/contact.md, section 8): the global search run
 !> on the parts, each part's local set, and the migration of node data
 !> between the mesh owners and the parts. contact_enforce calls these; the
 !> contributions of the parts go back to the owners as ordered records
 !> (contact_records).
 !>
-!> Parallel contact by RCB (DESIGN.md 5, CONTACT.md 5). The mesh partition
+!> Parallel contact by RCB (docs/design.md 5, docs/contact.md 8). The mesh partition
 !> does not follow the surfaces, so contact work is decomposed on its own:
 !> * At each global search (every few cycles, when the territory margin may be
 !>   used up) a recursive coordinate bisection of the owned contact nodes,

@@ -1,5 +1,5 @@
 !> Zone and node kernels of the compatible staggered scheme (plain arrays,
-!> no MPI, no I/O). The drivers in hydro_cycle call them stage by stage.
+!> no MPI, no I/O). The drivers in hydro_driver call them stage by stage.
 module hydro_kernels
   use core_kinds, only: rk
   use mesh_geometry, only: hex_volume_gradient, hex_characteristic_length, HOURGLASS_BASE, &

@@ -1,5 +1,5 @@
 !> The input deck: namelist groups &control, &hydro, &mesh, &material,
-!> &block, &region, &boundary and &output. Rank 0 reads the file and
+!> &block, &region, &boundary, &contact and &output. Rank 0 reads the file and
 !> broadcasts its text; every rank then parses the same text, and rank 0
 !> reports every problem found (group, key, reason) before any work starts.
 module io_deck

@@ -1,5 +1,5 @@
 !> HDF5 dumps (collective, one hyperslab per rank after a block
-!> redistribution) with the layout of DESIGN.md section 6, their XDMF
+!> redistribution) with the layout of docs/design.md section 6, their XDMF
 !> sidecars, the time-series XDMF, and restart reading.
 module io_dump
   use core_kinds, only: rk, ik, i8

@@ -14,7 +14,7 @@
 !> gamma = gamma0 - a (1 - rho0/rho): 'a' is Steinberg's first-order volume
 !> correction to the Grueneisen gamma, tabulated in his strength table next to
 !> Tm0 and gamma0. It is not the 'b' of his Mie-Grueneisen EOS (the column b of
-!> PROBLEMS.md): his EOS has gamma(rho) = (gamma0 + b mu) rho0/rho, mu = eta - 1,
+!> the table in docs/problems.md): his EOS has gamma(rho) = (gamma0 + b mu) rho0/rho, mu = eta - 1,
 !> whose first-order volume coefficient is gamma0 - b, and his tabulated a is that
 !> value rounded (Cu 2.02 - 0.47 = 1.55 ~ 1.5, Al 1.97 - 0.48 = 1.49 ~ 1.5).
 !>
@@ -148,7 +148,7 @@ contains
   !> 'ss304' (304 stainless steel). Any other name gives the unset default (g0 = 0);
   !> valid names are SG_SET_NAMES.
   !>
-  !> G0, Y0, Ymax, beta, n, A, B, Tm0, rho0 and gamma0 are the PROBLEMS.md table
+  !> G0, Y0, Ymax, beta, n, A, B, Tm0, rho0 and gamma0 are the table of docs/problems.md
   !> (Steinberg, UCRL-MA-106439). The Al and Cu strength rows, and a_melt = 1.5 for
   !> both, agree with the transcription of UCRL-MA-106439 (Change 1, 1996) in the
   !> Uintah MPM material files (SCG_Aluminum6061-T6.xml, SCG_CopperOFHC.xml). The

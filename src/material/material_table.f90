@@ -116,7 +116,7 @@ contains
   end function material_energy_from_pressure
 
   !> Built-in Mie-Gruneisen data (cm, g, us, Mbar) from Steinberg, UCRL-MA-106439,
-  !> as tabulated in the project's PROBLEMS.md: 'al6061' (Al 6061-T6), 'cu_ofhc'
+  !> as tabulated in docs/problems.md: 'al6061' (Al 6061-T6), 'cu_ofhc'
   !> (OFHC copper), 'ss304' (304 stainless steel: recalled values, still to be
   !> checked against a primary source), 'be_verney' (beryllium of the Verney
   !> problem). found is false for any other name.

@@ -1,7 +1,8 @@
-!> Replicated gathers for contact (until the RCB decomposition exists): every
-!> rank obtains the values of the same list of global items. Each item is
-!> owned by exactly one rank, the others contribute exact zeros, so the summed
-!> result is bitwise the owner's value on every rank.
+!> Replicated gathers: every rank obtains the values of the same list of
+!> global items. Each item is owned by exactly one rank, the others contribute
+!> exact zeros, so the summed result is bitwise the owner's value on every
+!> rank. Contact itself no longer replicates (it runs on RCB parts,
+!> contact_parts); the unit test test_contact_parallel uses this gather.
 module parallel_gather
   use mpi_f08
   use core_kinds, only: rk, i8

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""PROBLEMS.md D3 criterion: Al block on a steel block through contact.
+"""The criterion of docs/problems.md, D3: Al block on a steel block through contact.
 
 Usage: al_on_steel.py --exe IMPACT3D --mpiexec MPIRUN --workdir DIR --deck DECK
                       [--np 2] [--tol 0.03]

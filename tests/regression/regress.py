@@ -385,7 +385,7 @@ def cmd_rebound(args):
 
 
 def cmd_bars(args):
-    """Two elastic bars meeting through a contact pair (PROBLEMS.md C).
+    """Two elastic bars meeting through a contact pair (docs/problems.md, section C).
 
     Left bar (block 1) at --v-left, right bar (block 2) at --v-right, 1D strain.
     Criteria (each within --tol): contact lasts --duration (from the pair's
@@ -472,7 +472,7 @@ def cmd_bars(args):
 
 
 def cmd_mirror(args):
-    """Mirror test (PROBLEMS.md C): --deck (a body and its mirror image joined
+    """Mirror test (docs/problems.md, section C): --deck (a body and its mirror image joined
     by contact, the body's part first) against --reference (the body on the
     rigid unilateral wall): the body's node positions at the end agree to
     --tol of its size, and the image stays the mirror of the body (to
@@ -559,7 +559,7 @@ def cmd_mirror(args):
 
 
 def cmd_patch(args):
-    """Patch test (PROBLEMS.md C): after a planar wave crossed a contact
+    """Patch test (docs/problems.md, section C): after a planar wave crossed a contact
     interface between non-matching meshes, the normal stress sigma_xx of the
     zones with centroid x in --range (behind the front) is uniform across the
     section, (max - min)/|mean| <= --tol, and its mean equals --target within
@@ -591,7 +591,7 @@ def cmd_patch(args):
 
 
 def cmd_relative(args):
-    """A contact run against its single-mesh reference (PROBLEMS.md D): the
+    """A contact run against its single-mesh reference (docs/problems.md, section D): the
     --key of compare.py (--problem) for --deck is at most (1 + --tol) times
     the reference's (--reference); --max / --min bound other keys of the
     contact run; with --pair, the interface is in contact on every cycle and

@@ -1,4 +1,4 @@
-# Sedov octant split along the sphere r = 0.5 by contact (PROBLEMS.md D2,
+# Sedov octant split along the sphere r = 0.5 by contact (docs/problems.md, D2,
 # curved split; included from CMakeLists.txt). A ball octant (mesh type
 # 'ball') and the box minus the ball ('box_minus_ball') are meshed apart with
 # non-matching patches on the sphere (12 against 18 zones along a patch edge

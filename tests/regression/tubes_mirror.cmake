@@ -1,4 +1,4 @@
-# Parallel-axis tubes against the mirror test (PROBLEMS.md D4 variant, long;
+# Parallel-axis tubes against the mirror test (docs/problems.md, D4 variant, long;
 # included from CMakeLists.txt). Two identical Al tubes side by side (axes along
 # x) hit each other at +-0.001 cm/us through contact; the upper tube must move
 # as the same tube on the rigid frictionless unilateral plane wall z = 0

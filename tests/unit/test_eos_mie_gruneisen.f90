@@ -1,5 +1,5 @@
 !> Mie-Grueneisen EOS (Steinberg form) with the Cu and Al 6061-T6 data of
-!> PROBLEMS.md: (a) Hugoniot pressure and Hugoniot states, (b) sound speed
+!> docs/problems.md ("Material data"): (a) Hugoniot pressure and Hugoniot states, (b) sound speed
 !> against a central difference of p along the isentrope de = p/rho^2 drho,
 !> (c) energy inversion, (d) ambient state, (e) pressure cut-off and
 !> sound-speed floor.
