@@ -25,9 +25,10 @@
 !>
 !> Self-contact. A node lies on its own surface, so the segments within two
 !> rings of it are not candidates, and a node counts as inside only where
-!> the feature faces it (its own area-weighted normal . N < 0): two folds of
-!> one surface meet face to face, while a smooth stretch of surface curving
-!> away from the node does not.
+!> the feature faces it (the angle between its own area-weighted normal and
+!> N above 120 degrees, SELF_FACING): two folds of one surface meet face to
+!> face, while a stretch of surface curving away from the node, even as
+!> tightly as the crest of a fold, does not.
 !>
 !> Reach. Only segments whose box comes within `reach` of a node are
 !> candidates (a bucket grid); a node with none gets gap = +reach. A node
@@ -59,6 +60,12 @@ module contact_audit
   !> other body is not seen (a zone's worth of penetration is already a
   !> failure of the contact).
   real(rk), parameter :: REACH_SIZES = 3.0_rk
+  !> Self-contact: a node is inside only where its own normal and the
+  !> feature's make more than 120 degrees (cosine below this): two sheets
+  !> pressed together face each other (cosine near -1), while a surface that
+  !> only curves tightly, as at the crest of a fold, turns its normal through
+  !> intermediate angles within a few rings of the node.
+  real(rk), parameter :: SELF_FACING = -0.5_rk
   !> Largest number of grid cells along one axis.
   integer, parameter :: MAX_CELLS = 64
 
@@ -308,7 +315,7 @@ contains
       inside = inside .and. dot_product(d, nrm) < 0.0_rk
       if (inside .and. self) then
         own_n = node_normal(own, i)
-        inside = dot_product(own_n, nrm) < 0.0_rk
+        inside = dot_product(own_n, nrm) < SELF_FACING * norm2(nrm)
       end if
       if (inside) then
         gap(i) = -gap(i)
