@@ -87,6 +87,7 @@ module contact_enforce
       FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
       surface_geometry_t, interface_t, selection_t, contact_t, capture_of, initial_offsets_t
   use contact_audit, only: surface_sagitta, audit_reach
+  use contact_kernels, only: dlm_pair_force, dam_merged_normal_velocity, dam_put_back_velocity
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
@@ -465,7 +466,7 @@ contains
         if (.not. touched(i, k)) cycle
         if (.not. norm2(nmaster(:, i, k)) > 0.0_rk) cycle
         unit = nmaster(:, i, k) / norm2(nmaster(:, i, k))
-        vn = dot_product(pbar(:, i, k) + dt * fbar(:, i, k), unit) / mbar(i, k)
+        vn = dam_merged_normal_velocity(mbar(i, k), pbar(:, i, k), fbar(:, i, k), unit, dt)
         vmatch(:, i, k) = vmatch(:, i, k) + (vn - dot_product(vmatch(:, i, k), unit)) * unit
       end do
     end do
@@ -716,7 +717,7 @@ contains
     real(rk), allocatable :: lambda(:), fc(:, :)
     logical, allocatable :: gated(:)
     real(rk) :: nrm(3), s0, pen, wh, wd
-    real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, pen_free, w, target, sum_force, pen_max
+    real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, w, sum_force, pen_max
     real(rk) :: pen_sq, area_sum
     integer :: q, i, nodeh, noded, active, sweep
 
@@ -747,22 +748,8 @@ contains
           fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
           fd_ = dot_product(ct%f(:, noded), nrm) * wd
           ! The gate: the overlap's deepest vertex (dlm_geometry).
-          pen_free = p%fp_real(9, q) + dt * w + 0.5_rk * dt * dt * (fh_ / mh - fd_ / md)
-          gated(q) = pen_free > 0.0_rk .or. p%form == FORM_COORDINATE
-          select case (p%form)
-          case (FORM_COORDINATE)
-            fh = mu * (fd_ / md - fh_ / mh - w / (0.5_rk * dt) - pen / (0.5_rk * dt * dt))
-          case (FORM_VELOCITY)
-            fh = 0.0_rk
-            if (gated(q)) fh = mu * (fd_ / md - fh_ / mh + (recovery_speed(q) - w) / dt)
-          case default
-            fh = 0.0_rk
-            if (gated(q)) then
-              target = -max(pen + 0.5_rk * dt * w, 0.0_rk) / dt
-              fh = mu * (fd_ / md - fh_ / mh + (target - w) / dt)
-            end if
-          end select
-          fh = min(fh, 0.0_rk)
+          call dlm_pair_force(p%form, mh, md, fh_, fd_, w, pen, p%fp_real(9, q), dt, &
+              recovery_speed(q), fh, gated(q))
         else
           if (.not. gated(q) .or. p%form /= FORM_VELOCITY) cycle
           ! Residual approach at t^n+1 with every contact force so far.
@@ -1044,7 +1031,7 @@ contains
         target = target + p%rbf(c, q) * dot_product(vm(:, p%b%segments(c, &
             p%primary(q)%segment)), nrm)
       end do
-      vnew = vm(:, n) + (target - dot_product(vm(:, n), nrm)) * nrm
+      vnew = dam_put_back_velocity(vm(:, n), nrm, target)
       call add_record(out, ct%all_of(n), k, int(ct%all_of(n), i8), vnew)
       sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &
           ct%f(:, n), nrm), 0.0_rk)
