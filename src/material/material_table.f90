@@ -25,7 +25,8 @@ module material_table
         gamma0=0.0_rk) !< Mie-Gruneisen data
     integer :: strength = STRENGTH_NONE !< STRENGTH_* model
     real(rk) :: shear_modulus = 0.0_rk !< G
-    real(rk) :: yield_stress = huge(1.0_rk) !< Y (huge = elastic)
+    real(rk) :: yield_stress = huge(1.0_rk) !< Y, or Y0 with hardening (huge = elastic)
+    real(rk) :: hardening_modulus = 0.0_rk !< H of elastic_plastic: Y = Y0 + H eps_p
     type(steinberg_guinan_t) :: sg !< Steinberg-Guinan data
     type(johnson_cook_t) :: jc !< Johnson-Cook data
   end type material_t
@@ -79,12 +80,15 @@ contains
 
   !> Shear modulus and yield stress of a zone of material mat at pressure p,
   !> specific internal energy e (temperature T = T0 + e/cv, constant specific
-  !> heat), density rho, plastic strain eps_p and equivalent strain rate rate.
-  elemental subroutine material_flow(mat, p, e, rho, eps_p, rate, g, y)
+  !> heat), density rho, plastic strain eps_p and equivalent strain rate rate,
+  !> and the linear hardening modulus h the radial return must use (that of
+  !> elastic_plastic; 0 for the other models, whose hardening is explicit in y).
+  elemental subroutine material_flow(mat, p, e, rho, eps_p, rate, g, y, h)
     type(material_t), intent(in) :: mat
     real(rk), intent(in) :: p, e, rho, eps_p, rate
-    real(rk), intent(out) :: g, y
+    real(rk), intent(out) :: g, y, h
     real(rk) :: temperature
+    h = 0.0_rk
     select case (mat%strength)
     case (STRENGTH_STEINBERG_GUINAN)
       temperature = temperature_from_energy(max(e, 0.0_rk), mat%sg%cv, SG_REFERENCE_TEMPERATURE)
@@ -94,6 +98,11 @@ contains
       temperature = temperature_from_energy(max(e, 0.0_rk), mat%jc%cv, mat%jc%tr)
       g = mat%shear_modulus
       y = jc_yield(mat%jc, eps_p, rate, temperature)
+    case (STRENGTH_ELASTIC_PLASTIC)
+      g = mat%shear_modulus
+      y = mat%yield_stress
+      h = mat%hardening_modulus
+      if (h > 0.0_rk) y = y + h * max(eps_p, 0.0_rk)
     case default
       g = mat%shear_modulus
       y = mat%yield_stress
