@@ -11,8 +11,7 @@ module io_deck
       box_minus_ball_spec_t
   use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library, &
       STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC, STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK
-  use material_flow_stress, only: sg_set, jc_set, SG_SET_NAMES, JC_SET_NAMES, &
-      steinberg_guinan_t, johnson_cook_t, SG_REFERENCE_TEMPERATURE
+  use material_flow_stress, only: sg_set, jc_set, SG_SET_NAMES, JC_SET_NAMES
   use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE, &
       BC_WALL
@@ -656,6 +655,7 @@ contains
   end subroutine read_mesh
 
   subroutine read_material(sect, index, mat, status, read_ok)
+    use material_flow_stress, only: steinberg_guinan_t, johnson_cook_t, SG_REFERENCE_TEMPERATURE
     character(len=LINE_LEN), intent(in) :: sect(:)
     integer, intent(in) :: index
     type(material_t), intent(inout) :: mat
@@ -1069,6 +1069,56 @@ contains
     r%deposit_energy = deposit_energy
     r%deposit_point = deposit_point
     config%regions(index) = r
+    ! A density far from the material's reference density is the usual sign of
+    ! mixed units: rank 0 warns, once, before the run.
+    if (par_rank() == 0 .and. density /= UNSET .and. density > 0.0_rk .and. &
+        config%materials_read) call warn_density()
+
+  contains
+
+    !> Warn when the density is more than 20% from the rho0 of the region's
+    !> material: that of its block, or without block that of every block whose
+    !> box meets the region's box (silent when any of them is within 20%, or
+    !> has no reference density).
+    subroutine warn_density()
+      use, intrinsic :: iso_fortran_env, only: error_unit
+      real(rk), parameter :: TOLERANCE = 0.2_rk
+      logical :: listed(size(config%materials))
+      character(len=512) :: names
+      character(len=16) :: text
+      integer :: k, m
+      real(rk) :: rho_ref
+      listed = .false.
+      names = ''
+      do k = 1, size(config%blocks)
+        if (r%block > 0 .and. k /= r%block) cycle
+        if (r%block == 0 .and. .not. boxes_meet(config%blocks(k)%box, box)) cycle
+        m = config%blocks(k)%material
+        if (m == 0) cycle
+        if (listed(m)) cycle
+        if (config%materials(m)%eos /= EOS_MIE_GRUNEISEN) return
+        rho_ref = config%materials(m)%mg%rho0
+        if (.not. (rho_ref > 0.0_rk)) return
+        if (abs(density - rho_ref) <= TOLERANCE * rho_ref) return
+        listed(m) = .true.
+        write(text, '(es11.4)') rho_ref
+        if (len_trim(names) > 0) names = trim(names)//', '
+        names = trim(names)//''''//trim(config%materials(m)%name)//''' (rho0 = '// &
+            trim(adjustl(text))//')'
+      end do
+      if (.not. any(listed)) return
+      write(text, '(es11.4)') density
+      write(error_unit, '(a)') 'warning: '//trim(where)//': density: '// &
+          trim(adjustl(text))//' differs by more than 20% from the rho0 of material '// &
+          trim(names)//' (mixed units?)'
+    end subroutine warn_density
+
+    logical function boxes_meet(a, b)
+      real(rk), intent(in) :: a(6), b(6)
+      boxes_meet = a(1) <= b(2) .and. b(1) <= a(2) .and. a(3) <= b(4) .and. b(3) <= a(4) &
+          .and. a(5) <= b(6) .and. b(5) <= a(6)
+    end function boxes_meet
+
   end subroutine read_region
 
   subroutine read_boundary(sect, index, bc, status)
