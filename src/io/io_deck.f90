@@ -115,7 +115,7 @@ contains
           'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress', &
           'hardening_modulus', 'cv', 'jc_a', 'jc_b', 'jc_n', 'jc_c', 'jc_m', 'eps_dot0', &
           't_room', 't_melt', 'sg_beta', 'sg_n', 'sg_ymax', 'sg_eps_i', 'sg_a', 'sg_b', &
-          'sg_tmelt0', 'sg_gamma0', 'sg_a_melt']
+          'sg_tmelt0', 'sg_gamma0', 'sg_a_melt', 'sg_cold_energy']
     case ('block')
       keys = [character(len=KEY_LEN) :: 'name', 'material', 'box']
     case ('region')
@@ -674,13 +674,13 @@ contains
     real(rk) :: sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, sg_gamma0, sg_a_melt
     real(rk) :: lib_shear, lib_yield
     integer :: ios
-    logical :: found
+    logical :: found, sg_cold_energy
     character(len=256) :: msg
     character(len=16) :: where
     namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min, strength, &
         shear_modulus, yield_stress, hardening_modulus, cv, jc_a, jc_b, jc_n, jc_c, jc_m, &
         eps_dot0, t_room, t_melt, sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, &
-        sg_gamma0, sg_a_melt
+        sg_gamma0, sg_a_melt, sg_cold_energy
 
     write(where, '(a,i0,a)') '&material(', index, ')'
     name = ''
@@ -715,6 +715,7 @@ contains
     sg_tmelt0 = UNSET
     sg_gamma0 = UNSET
     sg_a_melt = UNSET
+    sg_cold_energy = .false.
     lib_shear = UNSET
     lib_yield = UNSET
     read(sect, nml=material, iostat=ios, iomsg=msg)
@@ -820,6 +821,7 @@ contains
       if (sg_gamma0 /= UNSET) mat%sg%gamma0 = sg_gamma0
       if (sg_a_melt /= UNSET) mat%sg%a_melt = sg_a_melt
       if (cv /= UNSET) mat%sg%cv = cv
+      mat%sg_cold_energy = sg_cold_energy
       mat%shear_modulus = mat%sg%g0
       if (mat%eos /= EOS_MIE_GRUNEISEN) then
         call status%add(trim(where)//': strength: ''steinberg_guinan'' needs eos = '// &
@@ -929,6 +931,8 @@ contains
     end subroutine reject_ep
 
     subroutine reject_sg()
+      if (sg_cold_energy) call status%add(trim(where)//': sg_cold_energy: only for '// &
+          'strength = ''steinberg_guinan'', not '''//trim(to_lower(strength))//'''')
       call only_for([character(len=KEY_LEN) :: 'sg_beta', 'sg_n', 'sg_ymax', 'sg_eps_i', &
           'sg_a', 'sg_b', 'sg_tmelt0', 'sg_gamma0', 'sg_a_melt'], [sg_beta, sg_n, sg_ymax, &
           sg_eps_i, sg_a, sg_b, sg_tmelt0, sg_gamma0, sg_a_melt], '''steinberg_guinan''')

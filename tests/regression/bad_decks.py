@@ -301,13 +301,15 @@ def build_cases():
                    "&material(1): yield_stress: required (> 0) for strength = "
                    "'elastic_plastic'"], min_errors=2))
     c.append(Case("material_other_model_keys",
-                  mat(ep + ", jc_a = 9e-4, sg_beta = 36.0, cv = 0.4e-5"),
+                  mat(ep + ", jc_a = 9e-4, sg_beta = 36.0, cv = 0.4e-5, sg_cold_energy = .true."),
                   ["&material(1): jc_a: only for strength = 'johnson_cook', not "
                    "'elastic_plastic'",
                    "&material(1): sg_beta: only for strength = 'steinberg_guinan', not "
                    "'elastic_plastic'",
                    "&material(1): cv: only for strength = 'steinberg_guinan' or "
-                   "'johnson_cook'"], min_errors=3))
+                   "'johnson_cook'",
+                   "&material(1): sg_cold_energy: only for strength = 'steinberg_guinan', "
+                   "not 'elastic_plastic'"], min_errors=4))
     c.append(Case("material_jc_no_library",
                   mat(mg + ", strength = 'johnson_cook', shear_modulus = 0.3"),
                   ["&material(1): %s: required for strength = 'johnson_cook' (or a library "
