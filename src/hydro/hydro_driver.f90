@@ -191,7 +191,7 @@ contains
     real(rk), intent(inout) :: to(:, :)
     logical, intent(in) :: accumulate
     integer :: m, i, z, k
-    real(rk) :: vz(3, 8), grad(3, 3), dp, shear, yield
+    real(rk) :: vz(3, 8), grad(3, 3), dp, shear, yield, hardening
     do m = 1, size(materials)
       if (materials(m)%strength == STRENGTH_NONE) cycle
       do i = mz%start(m), mz%start(m + 1) - 1
@@ -203,8 +203,8 @@ contains
         call velocity_gradient(vz, state%zone_bmatrix(:, :, z), state%zone_volume(z), grad)
         call material_flow(materials(m), state%zone_pressure(z), state%zone_energy(z), &
             state%zone_density(z), state%zone_plastic_strain(z), equivalent_strain_rate(grad), &
-            shear, yield)
-        call deviatoric_update(from(:, z), grad, step, shear, yield, to(:, z), dp)
+            shear, yield, hardening)
+        call deviatoric_update(from(:, z), grad, step, shear, yield, to(:, z), dp, hardening)
         if (accumulate) state%zone_plastic_strain(z) = state%zone_plastic_strain(z) + dp
       end do
     end do

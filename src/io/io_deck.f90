@@ -114,7 +114,10 @@ contains
           'offset', 'block', 'rotation_axis', 'rotation_angle']
     case ('material')
       keys = [character(len=KEY_LEN) :: 'name', 'eos', 'gamma', 'library', 'rho0', 'c0', 's1', &
-          'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress']
+          'gamma0', 'b', 'p_min', 'strength', 'shear_modulus', 'yield_stress', &
+          'hardening_modulus', 'cv', 'jc_a', 'jc_b', 'jc_n', 'jc_c', 'jc_m', 'eps_dot0', &
+          't_room', 't_melt', 'sg_beta', 'sg_n', 'sg_ymax', 'sg_eps_i', 'sg_a', 'sg_b', &
+          'sg_tmelt0', 'sg_gamma0', 'sg_a_melt', 'sg_cold_energy']
     case ('block')
       keys = [character(len=KEY_LEN) :: 'name', 'material', 'box']
     case ('region')
@@ -665,21 +668,32 @@ contains
   end subroutine read_mesh
 
   subroutine read_material(sect, index, mat, status, read_ok)
+    use material_flow_stress, only: steinberg_guinan_t, johnson_cook_t, SG_REFERENCE_TEMPERATURE
     character(len=LINE_LEN), intent(in) :: sect(:)
     integer, intent(in) :: index
     type(material_t), intent(inout) :: mat
     type(status_t), intent(inout) :: status
     logical, intent(inout) :: read_ok !< set false when the group cannot be read
+    character(len=*), parameter :: SG_LIBS = ' (or a library with Steinberg-Guinan data: '// &
+        SG_SET_NAMES//')'
+    character(len=*), parameter :: JC_LIBS = ' (or a library with Johnson-Cook data: '// &
+        JC_SET_NAMES//')'
+    character(len=*), parameter :: ANY_LIB = ' (or give library)'
     character(len=NAME_LEN) :: name, library
     character(len=32) :: eos, strength
     real(rk) :: gamma, rho0, c0, s1, gamma0, b, p_min, shear_modulus, yield_stress
+    real(rk) :: hardening_modulus, cv
+    real(rk) :: jc_a, jc_b, jc_n, jc_c, jc_m, eps_dot0, t_room, t_melt
+    real(rk) :: sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, sg_gamma0, sg_a_melt
     real(rk) :: lib_shear, lib_yield
     integer :: ios
-    logical :: found
+    logical :: found, sg_cold_energy
     character(len=256) :: msg
     character(len=16) :: where
     namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min, strength, &
-        shear_modulus, yield_stress
+        shear_modulus, yield_stress, hardening_modulus, cv, jc_a, jc_b, jc_n, jc_c, jc_m, &
+        eps_dot0, t_room, t_melt, sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, &
+        sg_gamma0, sg_a_melt, sg_cold_energy
 
     write(where, '(a,i0,a)') '&material(', index, ')'
     name = ''
@@ -695,6 +709,26 @@ contains
     strength = 'none'
     shear_modulus = UNSET
     yield_stress = UNSET
+    hardening_modulus = UNSET
+    cv = UNSET
+    jc_a = UNSET
+    jc_b = UNSET
+    jc_n = UNSET
+    jc_c = UNSET
+    jc_m = UNSET
+    eps_dot0 = UNSET
+    t_room = UNSET
+    t_melt = UNSET
+    sg_beta = UNSET
+    sg_n = UNSET
+    sg_ymax = UNSET
+    sg_eps_i = UNSET
+    sg_a = UNSET
+    sg_b = UNSET
+    sg_tmelt0 = UNSET
+    sg_gamma0 = UNSET
+    sg_a_melt = UNSET
+    sg_cold_energy = .false.
     lib_shear = UNSET
     lib_yield = UNSET
     read(sect, nml=material, iostat=ios, iomsg=msg)
@@ -750,46 +784,184 @@ contains
       call status%add(trim(where)//': eos: '''//trim(eos)//''' is not an equation of '// &
           'state (valid: ideal_gas, mie_gruneisen)')
     end select
-    ! Strength.
+    ! Strength: a library set gives the model's defaults and every key overrides
+    ! them; without a library each required key of the model must be given. A key
+    ! of another model is an error.
     select case (to_lower(strength))
     case ('none')
       mat%strength = STRENGTH_NONE
-      if (shear_modulus /= UNSET .or. yield_stress /= UNSET) call status%add(trim(where)// &
-          ': strength: shear_modulus and yield_stress need strength = ''elastic_plastic''')
+      call only_for([character(len=KEY_LEN) :: 'shear_modulus', 'yield_stress'], &
+          [shear_modulus, yield_stress], '''elastic_plastic'', ''steinberg_guinan'' or '// &
+          '''johnson_cook''')
+      call reject_ep()
+      call reject_sg()
+      call reject_jc()
+      call reject_cv()
     case ('elastic_plastic')
       mat%strength = STRENGTH_ELASTIC_PLASTIC
       mat%shear_modulus = lib_shear
       mat%yield_stress = lib_yield
       if (shear_modulus /= UNSET) mat%shear_modulus = shear_modulus
       if (yield_stress /= UNSET) mat%yield_stress = yield_stress
+      if (hardening_modulus /= UNSET) mat%hardening_modulus = hardening_modulus
       if (.not. (mat%shear_modulus > 0.0_rk)) call status%add(trim(where)// &
           ': shear_modulus: required (> 0) for strength = ''elastic_plastic'' (or give library)')
       if (.not. (mat%yield_stress > 0.0_rk)) call status%add(trim(where)// &
           ': yield_stress: required (> 0) for strength = ''elastic_plastic'' (or give library)')
+      call check_key('hardening_modulus', mat%hardening_modulus, &
+          mat%hardening_modulus >= 0.0_rk, '>= 0 (Mbar)', 'elastic_plastic', ANY_LIB)
+      call reject_sg()
+      call reject_jc()
+      call reject_cv()
     case ('steinberg_guinan')
       mat%strength = STRENGTH_STEINBERG_GUINAN
       mat%sg = sg_set(to_lower(library))
-      if (.not. (mat%sg%g0 > 0.0_rk)) then
-        call status%add(trim(where)//': library: strength = ''steinberg_guinan'' takes its '// &
-            'data from library (valid: '//SG_SET_NAMES//')')
+      if (.not. (mat%sg%g0 > 0.0_rk)) mat%sg = steinberg_guinan_t(g0=UNSET, y0=UNSET, &
+          ymax=UNSET, beta=UNSET, n=UNSET, eps_i=0.0_rk, a=UNSET, b=UNSET, tm0=UNSET, &
+          gamma0=UNSET, a_melt=UNSET, rho0=UNSET, cv=UNSET)
+      ! The reference density, and by default the melt law's gamma0, are the EOS's.
+      mat%sg%rho0 = mat%mg%rho0
+      mat%sg%gamma0 = mat%mg%gamma0
+      if (shear_modulus /= UNSET) mat%sg%g0 = shear_modulus
+      if (yield_stress /= UNSET) mat%sg%y0 = yield_stress
+      if (sg_ymax /= UNSET) mat%sg%ymax = sg_ymax
+      if (sg_beta /= UNSET) mat%sg%beta = sg_beta
+      if (sg_n /= UNSET) mat%sg%n = sg_n
+      if (sg_eps_i /= UNSET) mat%sg%eps_i = sg_eps_i
+      if (sg_a /= UNSET) mat%sg%a = sg_a
+      if (sg_b /= UNSET) mat%sg%b = sg_b
+      if (sg_tmelt0 /= UNSET) mat%sg%tm0 = sg_tmelt0
+      if (sg_gamma0 /= UNSET) mat%sg%gamma0 = sg_gamma0
+      if (sg_a_melt /= UNSET) mat%sg%a_melt = sg_a_melt
+      if (cv /= UNSET) mat%sg%cv = cv
+      mat%sg_cold_energy = sg_cold_energy
+      mat%shear_modulus = mat%sg%g0
+      if (mat%eos /= EOS_MIE_GRUNEISEN) then
+        call status%add(trim(where)//': strength: ''steinberg_guinan'' needs eos = '// &
+            '''mie_gruneisen'' (its rho0 and gamma0 enter G, Y and the melt law)')
       else
-        if (shear_modulus /= UNSET) mat%sg%g0 = shear_modulus
-        if (yield_stress /= UNSET) mat%sg%y0 = yield_stress
-        mat%shear_modulus = mat%sg%g0
+        call check_key('shear_modulus', mat%sg%g0, mat%sg%g0 > 0.0_rk, '> 0 (G0, Mbar)', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('yield_stress', mat%sg%y0, mat%sg%y0 > 0.0_rk, '> 0 (Y0, Mbar)', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('sg_ymax', mat%sg%ymax, mat%sg%ymax >= mat%sg%y0, &
+            '>= yield_stress (Ymax >= Y0, Mbar)', 'steinberg_guinan', SG_LIBS)
+        call check_key('sg_beta', mat%sg%beta, mat%sg%beta >= 0.0_rk, '>= 0', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('sg_n', mat%sg%n, mat%sg%n >= 0.0_rk, '>= 0', 'steinberg_guinan', &
+            SG_LIBS)
+        call check_key('sg_eps_i', mat%sg%eps_i, mat%sg%eps_i >= 0.0_rk, '>= 0', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('sg_a', mat%sg%a, mat%sg%a >= 0.0_rk, '>= 0 (1/Mbar)', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('sg_b', mat%sg%b, mat%sg%b >= 0.0_rk, '>= 0 (1/K)', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('sg_tmelt0', mat%sg%tm0, mat%sg%tm0 > SG_REFERENCE_TEMPERATURE, &
+            '> 300 K (the reference temperature of G0 and Y0)', 'steinberg_guinan', SG_LIBS)
+        call check_key('sg_gamma0', mat%sg%gamma0, mat%sg%gamma0 > 0.0_rk, '> 0', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('sg_a_melt', mat%sg%a_melt, mat%sg%a_melt >= 0.0_rk, '>= 0', &
+            'steinberg_guinan', SG_LIBS)
+        call check_key('cv', mat%sg%cv, mat%sg%cv > 0.0_rk, '> 0 (Mbar cm^3/(g K))', &
+            'steinberg_guinan', SG_LIBS)
       end if
+      call reject_ep()
+      call reject_jc()
     case ('johnson_cook')
       mat%strength = STRENGTH_JOHNSON_COOK
       mat%jc = jc_set(to_lower(library))
+      if (.not. (mat%jc%a > 0.0_rk)) mat%jc = johnson_cook_t(a=UNSET, b=UNSET, n=UNSET, &
+          c=UNSET, m=UNSET, tm=UNSET, cv=UNSET)
       mat%shear_modulus = lib_shear
       if (shear_modulus /= UNSET) mat%shear_modulus = shear_modulus
-      if (.not. (mat%jc%a > 0.0_rk)) call status%add(trim(where)//': library: strength = '// &
-          '''johnson_cook'' takes its data from library (valid: '//JC_SET_NAMES//')')
-      if (.not. (mat%shear_modulus > 0.0_rk)) call status%add(trim(where)// &
-          ': shear_modulus: required (> 0) for strength = ''johnson_cook''')
+      if (jc_a /= UNSET) mat%jc%a = jc_a
+      if (jc_b /= UNSET) mat%jc%b = jc_b
+      if (jc_n /= UNSET) mat%jc%n = jc_n
+      if (jc_c /= UNSET) mat%jc%c = jc_c
+      if (jc_m /= UNSET) mat%jc%m = jc_m
+      if (eps_dot0 /= UNSET) mat%jc%eps_dot0 = eps_dot0
+      if (t_room /= UNSET) mat%jc%tr = t_room
+      if (t_melt /= UNSET) mat%jc%tm = t_melt
+      if (cv /= UNSET) mat%jc%cv = cv
+      call check_key('shear_modulus', mat%shear_modulus, mat%shear_modulus > 0.0_rk, &
+          '> 0 (Mbar)', 'johnson_cook', ANY_LIB)
+      call check_key('jc_a', mat%jc%a, mat%jc%a > 0.0_rk, '> 0 (Mbar)', 'johnson_cook', &
+          JC_LIBS)
+      call check_key('jc_b', mat%jc%b, mat%jc%b >= 0.0_rk, '>= 0 (Mbar)', 'johnson_cook', &
+          JC_LIBS)
+      call check_key('jc_n', mat%jc%n, mat%jc%n >= 0.0_rk, '>= 0', 'johnson_cook', JC_LIBS)
+      call check_key('jc_c', mat%jc%c, mat%jc%c >= 0.0_rk, '>= 0', 'johnson_cook', JC_LIBS)
+      call check_key('jc_m', mat%jc%m, mat%jc%m > 0.0_rk, '> 0', 'johnson_cook', JC_LIBS)
+      call check_key('eps_dot0', mat%jc%eps_dot0, mat%jc%eps_dot0 > 0.0_rk, '> 0 (1/us)', &
+          'johnson_cook', JC_LIBS)
+      call check_key('t_room', mat%jc%tr, mat%jc%tr > 0.0_rk, '> 0 (K)', 'johnson_cook', &
+          JC_LIBS)
+      if (mat%jc%tr > 0.0_rk) call check_key('t_melt', mat%jc%tm, mat%jc%tm > mat%jc%tr, &
+          '> t_room (K)', 'johnson_cook', JC_LIBS)
+      call check_key('cv', mat%jc%cv, mat%jc%cv > 0.0_rk, '> 0 (Mbar cm^3/(g K))', &
+          'johnson_cook', JC_LIBS)
+      call only_for([character(len=KEY_LEN) :: 'yield_stress'], [yield_stress], &
+          '''elastic_plastic'' or ''steinberg_guinan'' (the initial yield of '// &
+          '''johnson_cook'' is jc_a)')
+      call reject_ep()
+      call reject_sg()
     case default
       call status%add(trim(where)//': strength: '''//trim(strength)//''' is not a strength '// &
           'model (valid: none, elastic_plastic, steinberg_guinan, johnson_cook)')
     end select
+
+  contains
+
+    !> A model parameter after library and key: required while UNSET, else valid.
+    subroutine check_key(key, value, valid, rule, model, libs)
+      character(len=*), intent(in) :: key, rule, model, libs
+      real(rk), intent(in) :: value
+      logical, intent(in) :: valid
+      if (value == UNSET) then
+        call status%add(trim(where)//': '//key//': required for strength = '''//model// &
+            ''''//libs)
+      else if (.not. valid) then
+        call status%add(trim(where)//': '//key//': must be '//rule//' for strength = '''// &
+            model//'''')
+      end if
+    end subroutine check_key
+
+    !> Each key given that this material's strength model does not take.
+    subroutine only_for(keys, values, models)
+      character(len=*), intent(in) :: keys(:)
+      real(rk), intent(in) :: values(:)
+      character(len=*), intent(in) :: models
+      integer :: k
+      do k = 1, size(keys)
+        if (values(k) /= UNSET) call status%add(trim(where)//': '//trim(keys(k))// &
+            ': only for strength = '//models//', not '''//trim(to_lower(strength))//'''')
+      end do
+    end subroutine only_for
+
+    subroutine reject_ep()
+      call only_for([character(len=KEY_LEN) :: 'hardening_modulus'], [hardening_modulus], &
+          '''elastic_plastic''')
+    end subroutine reject_ep
+
+    subroutine reject_sg()
+      if (sg_cold_energy) call status%add(trim(where)//': sg_cold_energy: only for '// &
+          'strength = ''steinberg_guinan'', not '''//trim(to_lower(strength))//'''')
+      call only_for([character(len=KEY_LEN) :: 'sg_beta', 'sg_n', 'sg_ymax', 'sg_eps_i', &
+          'sg_a', 'sg_b', 'sg_tmelt0', 'sg_gamma0', 'sg_a_melt'], [sg_beta, sg_n, sg_ymax, &
+          sg_eps_i, sg_a, sg_b, sg_tmelt0, sg_gamma0, sg_a_melt], '''steinberg_guinan''')
+    end subroutine reject_sg
+
+    subroutine reject_jc()
+      call only_for([character(len=KEY_LEN) :: 'jc_a', 'jc_b', 'jc_n', 'jc_c', 'jc_m', &
+          'eps_dot0', 't_room', 't_melt'], [jc_a, jc_b, jc_n, jc_c, jc_m, eps_dot0, t_room, &
+          t_melt], '''johnson_cook''')
+    end subroutine reject_jc
+
+    subroutine reject_cv()
+      call only_for([character(len=KEY_LEN) :: 'cv'], [cv], '''steinberg_guinan'' or '// &
+          '''johnson_cook'' (the models with a temperature)')
+    end subroutine reject_cv
+
   end subroutine read_material
 
   subroutine check_material_names(config, status)
@@ -914,6 +1086,56 @@ contains
     r%deposit_energy = deposit_energy
     r%deposit_point = deposit_point
     config%regions(index) = r
+    ! A density far from the material's reference density is the usual sign of
+    ! mixed units: rank 0 warns, once, before the run.
+    if (par_rank() == 0 .and. density /= UNSET .and. density > 0.0_rk .and. &
+        config%materials_read) call warn_density()
+
+  contains
+
+    !> Warn when the density is more than 20% from the rho0 of the region's
+    !> material: that of its block, or without block that of every block whose
+    !> box meets the region's box (silent when any of them is within 20%, or
+    !> has no reference density).
+    subroutine warn_density()
+      use, intrinsic :: iso_fortran_env, only: error_unit
+      real(rk), parameter :: TOLERANCE = 0.2_rk
+      logical :: listed(size(config%materials))
+      character(len=512) :: names
+      character(len=16) :: text
+      integer :: k, m
+      real(rk) :: rho_ref
+      listed = .false.
+      names = ''
+      do k = 1, size(config%blocks)
+        if (r%block > 0 .and. k /= r%block) cycle
+        if (r%block == 0 .and. .not. boxes_meet(config%blocks(k)%box, box)) cycle
+        m = config%blocks(k)%material
+        if (m == 0) cycle
+        if (listed(m)) cycle
+        if (config%materials(m)%eos /= EOS_MIE_GRUNEISEN) return
+        rho_ref = config%materials(m)%mg%rho0
+        if (.not. (rho_ref > 0.0_rk)) return
+        if (abs(density - rho_ref) <= TOLERANCE * rho_ref) return
+        listed(m) = .true.
+        write(text, '(es11.4)') rho_ref
+        if (len_trim(names) > 0) names = trim(names)//', '
+        names = trim(names)//''''//trim(config%materials(m)%name)//''' (rho0 = '// &
+            trim(adjustl(text))//')'
+      end do
+      if (.not. any(listed)) return
+      write(text, '(es11.4)') density
+      write(error_unit, '(a)') 'warning: '//trim(where)//': density: '// &
+          trim(adjustl(text))//' differs by more than 20% from the rho0 of material '// &
+          trim(names)//' (mixed units?)'
+    end subroutine warn_density
+
+    logical function boxes_meet(a, b)
+      real(rk), intent(in) :: a(6), b(6)
+      boxes_meet = a(1) <= b(2) .and. b(1) <= a(2) .and. a(3) <= b(4) .and. b(3) <= a(4) &
+          .and. a(5) <= b(6) .and. b(5) <= a(6)
+    end function boxes_meet
+
   end subroutine read_region
 
   subroutine read_boundary(sect, index, bc, status)

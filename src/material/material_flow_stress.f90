@@ -27,8 +27,9 @@
 !> Temperature: Steinberg takes T from the energy above the cold curve with a
 !> Dulong-Petit heat capacity. Here T = 300 K + e/cv with a constant specific heat
 !> cv (Mbar cm^3/(g K)) and e the specific internal energy measured from the
-!> ambient state; the cold-compression energy is not subtracted, which slightly
-!> overestimates T under strong compression.
+!> ambient state; by default the cold-compression energy is not subtracted, which
+!> slightly overestimates T under strong compression (material_table subtracts an
+!> approximation of it when a material asks, with sg_cold_energy).
 !>
 !> Johnson-Cook, from G. R. Johnson and W. H. Cook, Proc. 7th Int. Symp. on
 !> Ballistics, The Hague, 1983, pp. 541-547:

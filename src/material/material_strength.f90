@@ -1,5 +1,6 @@
 !> Deviatoric stress kernels: hypoelastic update with the Jaumann rate and
-!> radial return to the von Mises yield surface (elastic-perfectly plastic).
+!> radial return to the von Mises yield surface (elastic-perfectly plastic, or
+!> with linear isotropic hardening Y = Y0 + H eps_p).
 !> Plain arrays, no MPI, no I/O. Stress components: xx, yy, zz, xy, yz, zx.
 module material_strength
   use core_kinds, only: rk
@@ -31,16 +32,20 @@ contains
   !> s_new = radial_return(s + step (2 G D' + W s - s W), Y): trial stress by the
   !> Jaumann rate, scaled back to the yield surface sqrt(3/2 s:s) = Y when
   !> outside it. Returns the equivalent plastic strain increment
-  !> (sbar_trial - Y) / (3 G).
-  pure subroutine deviatoric_update(s, grad, step, shear, yield, s_new, dplastic)
+  !> (sbar_trial - Y) / (3 G). With a linear hardening modulus H the surface
+  !> grows with the increment: sbar_new = Y + H dplastic = sbar_trial - 3 G dplastic,
+  !> so dplastic = (sbar_trial - Y) / (3 G + H) and s_new is scaled to Y + H dplastic
+  !> (exact for linear hardening; H = 0 is the perfectly plastic return, bit for bit).
+  pure subroutine deviatoric_update(s, grad, step, shear, yield, s_new, dplastic, hardening)
     real(rk), intent(in) :: s(6) !< deviatoric stress at the start of the step
     real(rk), intent(in) :: grad(3, 3) !< velocity gradient over the step
     real(rk), intent(in) :: step !< time step
     real(rk), intent(in) :: shear !< shear modulus G
-    real(rk), intent(in) :: yield !< yield stress Y (huge for elastic)
+    real(rk), intent(in) :: yield !< yield stress Y at the start of the step (huge for elastic)
     real(rk), intent(out) :: s_new(6)
     real(rk), intent(out) :: dplastic
-    real(rk) :: d(3, 3), w(3, 3), sm(3, 3), rate(3, 3), trace, sbar
+    real(rk), intent(in), optional :: hardening !< linear hardening modulus H >= 0 (default 0)
+    real(rk) :: d(3, 3), w(3, 3), sm(3, 3), rate(3, 3), trace, sbar, h
     ! A melted (or strengthless) zone carries no deviatoric stress.
     if (.not. (shear > 0.0_rk) .or. .not. (yield > 0.0_rk)) then
       s_new = 0.0_rk
@@ -65,8 +70,15 @@ contains
         + 2.0_rk * (s_new(4)**2 + s_new(5)**2 + s_new(6)**2)))
     dplastic = 0.0_rk
     if (sbar > yield) then
-      s_new = s_new * (yield / sbar)
-      dplastic = (sbar - yield) / (3.0_rk * shear)
+      h = 0.0_rk
+      if (present(hardening)) h = hardening
+      if (h > 0.0_rk) then
+        dplastic = (sbar - yield) / (3.0_rk * shear + h)
+        s_new = s_new * ((yield + h * dplastic) / sbar)
+      else
+        s_new = s_new * (yield / sbar)
+        dplastic = (sbar - yield) / (3.0_rk * shear)
+      end if
     end if
   end subroutine deviatoric_update
 

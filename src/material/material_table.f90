@@ -25,8 +25,12 @@ module material_table
         gamma0=0.0_rk) !< Mie-Gruneisen data
     integer :: strength = STRENGTH_NONE !< STRENGTH_* model
     real(rk) :: shear_modulus = 0.0_rk !< G
-    real(rk) :: yield_stress = huge(1.0_rk) !< Y (huge = elastic)
+    real(rk) :: yield_stress = huge(1.0_rk) !< Y, or Y0 with hardening (huge = elastic)
+    real(rk) :: hardening_modulus = 0.0_rk !< H of elastic_plastic: Y = Y0 + H eps_p
     type(steinberg_guinan_t) :: sg !< Steinberg-Guinan data
+    !> Steinberg-Guinan temperature from the energy above the cold compression
+    !> energy (sg_temperature); false: from e itself, the default
+    logical :: sg_cold_energy = .false.
     type(johnson_cook_t) :: jc !< Johnson-Cook data
   end type material_t
 
@@ -70,8 +74,7 @@ contains
     real(rk), intent(in) :: p, e, rho
     real(rk) :: g
     if (mat%strength == STRENGTH_STEINBERG_GUINAN) then
-      g = sg_shear_modulus(mat%sg, p, temperature_from_energy(max(e, 0.0_rk), mat%sg%cv, &
-          SG_REFERENCE_TEMPERATURE), rho / mat%sg%rho0)
+      g = sg_shear_modulus(mat%sg, p, sg_temperature(mat, e, rho), rho / mat%sg%rho0)
     else
       g = mat%shear_modulus
     end if
@@ -79,26 +82,56 @@ contains
 
   !> Shear modulus and yield stress of a zone of material mat at pressure p,
   !> specific internal energy e (temperature T = T0 + e/cv, constant specific
-  !> heat), density rho, plastic strain eps_p and equivalent strain rate rate.
-  elemental subroutine material_flow(mat, p, e, rho, eps_p, rate, g, y)
+  !> heat), density rho, plastic strain eps_p and equivalent strain rate rate,
+  !> and the linear hardening modulus h the radial return must use (that of
+  !> elastic_plastic; 0 for the other models, whose hardening is explicit in y).
+  elemental subroutine material_flow(mat, p, e, rho, eps_p, rate, g, y, h)
     type(material_t), intent(in) :: mat
     real(rk), intent(in) :: p, e, rho, eps_p, rate
-    real(rk), intent(out) :: g, y
+    real(rk), intent(out) :: g, y, h
     real(rk) :: temperature
+    h = 0.0_rk
     select case (mat%strength)
     case (STRENGTH_STEINBERG_GUINAN)
-      temperature = temperature_from_energy(max(e, 0.0_rk), mat%sg%cv, SG_REFERENCE_TEMPERATURE)
+      temperature = sg_temperature(mat, e, rho)
       g = sg_shear_modulus(mat%sg, p, temperature, rho / mat%sg%rho0)
       y = sg_yield(mat%sg, eps_p, p, temperature, rho / mat%sg%rho0)
     case (STRENGTH_JOHNSON_COOK)
       temperature = temperature_from_energy(max(e, 0.0_rk), mat%jc%cv, mat%jc%tr)
       g = mat%shear_modulus
       y = jc_yield(mat%jc, eps_p, rate, temperature)
+    case (STRENGTH_ELASTIC_PLASTIC)
+      g = mat%shear_modulus
+      y = mat%yield_stress
+      h = mat%hardening_modulus
+      if (h > 0.0_rk) y = y + h * max(eps_p, 0.0_rk)
     case default
       g = mat%shear_modulus
       y = mat%yield_stress
     end select
   end subroutine material_flow
+
+  !> Steinberg-Guinan temperature 300 K + e_th/cv. By default e_th = max(e, 0), the
+  !> energy above the ambient state. With sg_cold_energy (Mie-Gruneisen materials)
+  !> e_th = max(e - e_c(rho), 0) with the cold compression (or expansion) energy
+  !> approximated by the energy on the linear Us-up Hugoniot,
+  !>   e_c = c0^2 chi^2 / (2 (1 - s1 chi)^2), chi = 1 - rho0/rho,
+  !> which is the energy of the isentrope through the ambient state to second
+  !> order in chi (shock heating is third order); rho0 is the EOS's.
+  elemental function sg_temperature(mat, e, rho) result(temperature)
+    type(material_t), intent(in) :: mat
+    real(rk), intent(in) :: e, rho
+    real(rk) :: temperature
+    real(rk) :: chi, e_cold
+    if (mat%sg_cold_energy) then
+      chi = 1.0_rk - mat%mg%rho0 / rho
+      e_cold = 0.5_rk * (mat%mg%c0 * chi / (1.0_rk - mat%mg%s1 * chi))**2
+      temperature = temperature_from_energy(max(e - e_cold, 0.0_rk), mat%sg%cv, &
+          SG_REFERENCE_TEMPERATURE)
+    else
+      temperature = temperature_from_energy(max(e, 0.0_rk), mat%sg%cv, SG_REFERENCE_TEMPERATURE)
+    end if
+  end function sg_temperature
 
   !> Specific internal energy that gives pressure p at density rho.
   elemental function material_energy_from_pressure(mat, rho, p) result(e)

@@ -117,10 +117,12 @@ def append(extra):
 
 
 class Case:
-    def __init__(self, name, edit, expect, min_errors=1, deck_arg=None, expect_code=1):
+    def __init__(self, name, edit, expect, min_errors=1, deck_arg=None, expect_code=1,
+                 absent=()):
         self.name = name
         self.edit = edit  # base text -> bad text
         self.expect = expect  # fragments that must all appear in stderr
+        self.absent = absent  # fragments that must not appear in stderr
         self.min_errors = min_errors
         self.deck_arg = deck_arg  # callable(case_dir, deck_path) -> program argument
         self.expect_code = expect_code
@@ -272,6 +274,135 @@ def build_cases():
                   ["&material(1): gamma: must be > 1"]))
     c.append(Case("material_gamma_missing", sub(", gamma = 1.4", ""),
                   ["&material(1): gamma: required for eos = 'ideal_gas'"]))
+    # --- &material: strength parameters (issue 17 item 1) -------------------------
+    gas = "name = 'gas', eos = 'ideal_gas', gamma = 1.4"
+    mg = "name = 'gas', eos = 'mie_gruneisen', rho0 = 1.0, c0 = 1.0, s1 = 1.0, gamma0 = 0.4"
+    ep = mg + ", strength = 'elastic_plastic', shear_modulus = 0.3, yield_stress = 0.003"
+    jc = (mg + ", strength = 'johnson_cook', shear_modulus = 0.3, jc_a = 9e-4, jc_b = 3e-3, "
+          "jc_n = 0.3, jc_c = 0.025, jc_m = 1.1, t_melt = 1356.0, cv = 0.4e-5")
+    sg = (mg + ", strength = 'steinberg_guinan', shear_modulus = 0.477, yield_stress = 0.0012, "
+          "sg_ymax = 0.0064, sg_beta = 36.0, sg_n = 0.45, sg_a = 2.83, sg_b = 3.77e-4, "
+          "sg_tmelt0 = 1790.0, sg_a_melt = 1.5, cv = 0.385e-5")
+
+    def mat(text):
+        return sub(gas, text)
+
+    c.append(Case("material_hardening_negative", mat(ep + ", hardening_modulus = -0.1"),
+                  ["&material(1): hardening_modulus: must be >= 0 (Mbar) for strength = "
+                   "'elastic_plastic'"]))
+    c.append(Case("material_hardening_without_strength",
+                  mat(mg + ", hardening_modulus = 0.1"),
+                  ["&material(1): hardening_modulus: only for strength = 'elastic_plastic', "
+                   "not 'none'"]))
+    c.append(Case("material_elastic_plastic_no_library",
+                  mat(mg + ", strength = 'elastic_plastic'"),
+                  ["&material(1): shear_modulus: required (> 0) for strength = "
+                   "'elastic_plastic'",
+                   "&material(1): yield_stress: required (> 0) for strength = "
+                   "'elastic_plastic'"], min_errors=2))
+    c.append(Case("material_other_model_keys",
+                  mat(ep + ", jc_a = 9e-4, sg_beta = 36.0, cv = 0.4e-5, sg_cold_energy = .true."),
+                  ["&material(1): jc_a: only for strength = 'johnson_cook', not "
+                   "'elastic_plastic'",
+                   "&material(1): sg_beta: only for strength = 'steinberg_guinan', not "
+                   "'elastic_plastic'",
+                   "&material(1): cv: only for strength = 'steinberg_guinan' or "
+                   "'johnson_cook'",
+                   "&material(1): sg_cold_energy: only for strength = 'steinberg_guinan', "
+                   "not 'elastic_plastic'"], min_errors=4))
+    c.append(Case("material_jc_no_library",
+                  mat(mg + ", strength = 'johnson_cook', shear_modulus = 0.3"),
+                  ["&material(1): %s: required for strength = 'johnson_cook' (or a library "
+                   "with Johnson-Cook data: cu_ofhc)" % k
+                   for k in ["jc_a", "jc_b", "jc_n", "jc_c", "jc_m", "t_melt", "cv"]],
+                  min_errors=7))
+    c.append(Case("material_jc_shear_missing",
+                  mat(jc.replace(", shear_modulus = 0.3", "")),
+                  ["&material(1): shear_modulus: required for strength = 'johnson_cook'"]))
+    c.append(Case("material_jc_bad_values",
+                  mat(jc.replace("jc_a = 9e-4, jc_b = 3e-3, jc_n = 0.3, jc_c = 0.025, "
+                                 "jc_m = 1.1",
+                                 "jc_a = 0.0, jc_b = -3e-3, jc_n = -0.3, jc_c = -0.025, "
+                                 "jc_m = 0.0, eps_dot0 = 0.0, t_room = -5.0")
+                      .replace("cv = 0.4e-5", "cv = 0.0")
+                      .replace("shear_modulus = 0.3", "shear_modulus = -0.3")),
+                  ["&material(1): shear_modulus: must be > 0 (Mbar) for strength = "
+                   "'johnson_cook'",
+                   "&material(1): jc_a: must be > 0 (Mbar) for strength = 'johnson_cook'",
+                   "&material(1): jc_b: must be >= 0 (Mbar)",
+                   "&material(1): jc_n: must be >= 0",
+                   "&material(1): jc_c: must be >= 0",
+                   "&material(1): jc_m: must be > 0",
+                   "&material(1): eps_dot0: must be > 0 (1/us)",
+                   "&material(1): t_room: must be > 0 (K)",
+                   "&material(1): cv: must be > 0 (Mbar cm^3/(g K)) for strength = "
+                   "'johnson_cook'"], min_errors=9))
+    c.append(Case("material_jc_melt_below_room",
+                  mat(jc.replace("t_melt = 1356.0", "t_melt = 1356.0, t_room = 1400.0")),
+                  ["&material(1): t_melt: must be > t_room (K) for strength = 'johnson_cook'"]))
+    c.append(Case("material_jc_other_model_keys",
+                  mat(jc + ", yield_stress = 0.003, sg_n = 0.45, hardening_modulus = 0.1"),
+                  ["&material(1): yield_stress: only for strength = 'elastic_plastic' or "
+                   "'steinberg_guinan' (the initial yield of 'johnson_cook' is jc_a)",
+                   "&material(1): sg_n: only for strength = 'steinberg_guinan', not "
+                   "'johnson_cook'",
+                   "&material(1): hardening_modulus: only for strength = 'elastic_plastic', "
+                   "not 'johnson_cook'"], min_errors=3))
+    c.append(Case("material_sg_no_library",
+                  mat(mg + ", strength = 'steinberg_guinan'"),
+                  ["&material(1): %s: required for strength = 'steinberg_guinan' (or a "
+                   "library with Steinberg-Guinan data: al6061, cu_ofhc, ss304)" % k
+                   for k in ["shear_modulus", "yield_stress", "sg_ymax", "sg_beta", "sg_n",
+                             "sg_a", "sg_b", "sg_tmelt0", "sg_a_melt", "cv"]],
+                  min_errors=10))
+    c.append(Case("material_sg_library_without_sg_data",
+                  mat("name = 'gas', eos = 'mie_gruneisen', library = 'be_verney', "
+                      "strength = 'steinberg_guinan'"),
+                  ["&material(1): sg_beta: required for strength = 'steinberg_guinan' (or a "
+                   "library with Steinberg-Guinan data"], min_errors=8))
+    c.append(Case("material_sg_bad_values",
+                  mat(sg.replace("shear_modulus = 0.477, yield_stress = 0.0012",
+                                 "shear_modulus = 0.0, yield_stress = -0.0012")
+                      .replace("sg_beta = 36.0, sg_n = 0.45, sg_a = 2.83, sg_b = 3.77e-4",
+                               "sg_beta = -36.0, sg_n = -0.45, sg_a = -2.83, sg_b = -3.77e-4, "
+                               "sg_eps_i = -0.1, sg_gamma0 = 0.0")
+                      .replace("sg_tmelt0 = 1790.0, sg_a_melt = 1.5, cv = 0.385e-5",
+                               "sg_tmelt0 = 250.0, sg_a_melt = -1.5, cv = -0.385e-5")),
+                  ["&material(1): shear_modulus: must be > 0 (G0, Mbar) for strength = "
+                   "'steinberg_guinan'",
+                   "&material(1): yield_stress: must be > 0 (Y0, Mbar)",
+                   "&material(1): sg_beta: must be >= 0",
+                   "&material(1): sg_n: must be >= 0",
+                   "&material(1): sg_a: must be >= 0 (1/Mbar)",
+                   "&material(1): sg_b: must be >= 0 (1/K)",
+                   "&material(1): sg_eps_i: must be >= 0",
+                   "&material(1): sg_gamma0: must be > 0",
+                   "&material(1): sg_tmelt0: must be > 300 K",
+                   "&material(1): sg_a_melt: must be >= 0",
+                   "&material(1): cv: must be > 0 (Mbar cm^3/(g K)) for strength = "
+                   "'steinberg_guinan'"], min_errors=11))
+    c.append(Case("material_sg_ymax_below_y0",
+                  mat(sg.replace("sg_ymax = 0.0064", "sg_ymax = 0.001")),
+                  ["&material(1): sg_ymax: must be >= yield_stress (Ymax >= Y0, Mbar)"]))
+    c.append(Case("material_sg_ideal_gas",
+                  mat(gas + ", strength = 'steinberg_guinan', shear_modulus = 0.477"),
+                  ["&material(1): strength: 'steinberg_guinan' needs eos = 'mie_gruneisen'"]))
+    c.append(Case("material_sg_other_model_keys",
+                  mat(sg + ", jc_m = 1.1, t_melt = 1356.0, hardening_modulus = 0.1"),
+                  ["&material(1): jc_m: only for strength = 'johnson_cook', not "
+                   "'steinberg_guinan'",
+                   "&material(1): t_melt: only for strength = 'johnson_cook'",
+                   "&material(1): hardening_modulus: only for strength = 'elastic_plastic', "
+                   "not 'steinberg_guinan'"], min_errors=3))
+    c.append(Case("material_cv_without_strength", mat(mg + ", cv = 0.4e-5"),
+                  ["&material(1): cv: only for strength = 'steinberg_guinan' or "
+                   "'johnson_cook' (the models with a temperature), not 'none'"]))
+    # A region density far from its material's rho0 (mixed units) is a warning, not an
+    # error: the run goes ahead. Region 1 (density = rho0) is not warned about.
+    c.append(Case("region_density_far_from_rho0_warns", mat(mg),
+                  ["warning: &region(2): density: 1.2500E-01 differs by more than 20% from "
+                   "the rho0 of material 'gas' (rho0 = 1.0000E+00)"],
+                  expect_code=0, absent=["warning: &region(1)"]))
     # --- &block ----------------------------------------------------------------
     c.append(Case("block_unknown_material", sub("material = 'gas'", "material = 'air'"),
                   ["&block(1): material: 'air' is not a material of this deck"]))
@@ -393,6 +524,9 @@ def run_case(case, program, launcher, top):
         return False, "cannot run %s: %s" % (" ".join(cmd), err), ""
     err_text = proc.stderr
     why = []
+    for frag in case.absent:
+        if frag in err_text:
+            why.append("stderr has %r" % frag)
     if proc.returncode != case.expect_code:
         why.append("exit code %d, expected %d" % (proc.returncode, case.expect_code))
     outputs = written_outputs(case_dir)
@@ -401,6 +535,9 @@ def run_case(case, program, launcher, top):
             why.append("valid run wrote no dump/history (found %s)" % outputs)
         if "input error" in err_text:
             why.append("valid run reported input errors")
+        for frag in case.expect:
+            if frag not in err_text:
+                why.append("stderr lacks %r" % frag)
     else:
         for frag in case.expect:
             if frag not in err_text:

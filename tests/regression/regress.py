@@ -54,6 +54,10 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   shape    --deck D --reference R --tol T
                                       Taylor rod: final length and foot diameter of D
                                       within T (relative) of R's
+  same     --deck D --reference R --np N
+                                      D and R write the same dumps, every one bitwise
+                                      identical (h5diff, /run excluded): e.g. a material
+                                      given by deck keys against its library set
 Prints 'N passed, M failed' and exits 1 on failure.
 """
 import argparse
@@ -703,6 +707,26 @@ def cmd_shape(args):
     print(out.strip().splitlines()[-2] if out.strip() else "")
 
 
+def cmd_same(args):
+    """--deck and --reference, run on --np ranks, write the same dumps and every one
+    is bitwise identical (h5diff, /run excluded)."""
+    wd_ref = os.path.join(args.workdir, "reference")
+    wd = os.path.join(args.workdir, "run")
+    code, out, err = run(args, args.np, wd_ref, args.reference)
+    check("reference run exits 0", code == 0, err[-2000:])
+    code2, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code2 == 0, err[-2000:])
+    if code or code2:
+        return
+    ref = sorted(os.path.basename(p) for p in glob.glob(os.path.join(wd_ref, "*.h5")))
+    mine = sorted(os.path.basename(p) for p in glob.glob(os.path.join(wd, "*.h5")))
+    check("same dumps written (%d)" % len(ref), mine == ref and len(ref) >= 2, " ".join(mine))
+    for name in ref:
+        if name in mine:
+            same, diff = h5same(os.path.join(wd_ref, name), os.path.join(wd, name))
+            check("%s bitwise identical to the reference's" % name, same, diff)
+
+
 def cmd_impact(args):
     """Two bodies through contact (pair --pair): the energy balance closes to
     --tol, the largest penetration stays below --max-pen, the total momentum
@@ -1034,7 +1058,7 @@ def main():
                                         "convergence", "window", "interface", "stability",
                                         "wavefront", "rebound", "twowave", "shell_stop",
                                         "stopfile", "bars", "mirror", "patch", "relative",
-                                        "shape", "impact", "signal", "walllimit"])
+                                        "shape", "impact", "signal", "walllimit", "same"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
