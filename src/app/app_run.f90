@@ -17,9 +17,11 @@ module app_run
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_time_step, hydro_energies, &
       hydro_strength_update
-  use io_deck, only: config_t, deck_read
+  use io_deck, only: config_t, deck_read, deck_restart_check, output_directory_create
   use io_h5, only: h5_library_open, h5_library_close
-  use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
+  use io_dump, only: dump_write, dump_read, dump_read_deck, dump_series_update, run_info_t
+  use core_version, only: IMPACT3D_VERSION
+  use app_eta, only: eta_t
   use app_setup, only: setup_mesh, setup_state
   use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
       contact_report, &
@@ -51,9 +53,10 @@ module app_run
 contains
 
   !> Run the deck; returns the process exit code (same on every rank).
-  subroutine run_deck(deck_path, restart_path, check_only, code)
+  subroutine run_deck(deck_path, restart_path, check_only, force, code)
     character(len=*), intent(in) :: deck_path, restart_path
     logical, intent(in) :: check_only !< validate the deck and set up, then stop
+    logical, intent(in) :: force !< restart even if groups that must not change did
     integer, intent(out) :: code
     type(config_t) :: config
     type(status_t) :: status
@@ -90,6 +93,8 @@ contains
       call par_bcast(exists)
       if (.not. exists) call status%add('&control: restart: file '''//trim(restart)// &
           ''' does not exist')
+      ! Before anything else: the deck against the one the dump was made with.
+      if (status%ok()) call restart_deck_check(restart, config, force, status)
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
@@ -113,6 +118,12 @@ contains
     end if
     if (par_rank() == 0) call echo(config, mesh, restart)
     if (check_only) return
+    call output_directory_create(config%output%directory, status)
+    if (.not. status%ok()) then
+      call report(status)
+      code = EXIT_INPUT
+      return
+    end if
 
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
@@ -127,6 +138,44 @@ contains
         wall_read, code)
     call h5_library_close(ierr, msg)
   end subroutine run_deck
+
+  !> A restart's deck against the deck stored in the dump: a change outside
+  !> &control and &output is an input error, or with force a warning.
+  subroutine restart_deck_check(restart, config, force, status)
+    character(len=*), intent(in) :: restart
+    type(config_t), intent(in) :: config
+    logical, intent(in) :: force
+    type(status_t), intent(inout) :: status
+    type(status_t) :: changes
+    character(len=:), allocatable :: stored
+    logical :: found
+    integer :: i
+    call dump_read_deck(restart, stored, found, status)
+    if (.not. status%ok()) return
+    if (.not. found) then
+      if (par_rank() == 0) write(error_unit, '(a)') 'impact3d: warning: '''//trim(restart)// &
+          ''' holds no deck (an older dump): the deck is not compared with it'
+      return
+    end if
+    call deck_restart_check(stored, config%deck_text, changes)
+    if (changes%ok()) return
+    if (force) then
+      if (par_rank() == 0) then
+        do i = 1, min(changes%count, size(changes%messages))
+          write(error_unit, '(a)') 'impact3d: warning: '//trim(changes%messages(i))
+        end do
+        write(error_unit, '(a)') 'impact3d: warning: restarting with a changed deck '// &
+            '(--restart-force)'
+      end if
+      return
+    end if
+    do i = 1, min(changes%count, size(changes%messages))
+      call status%add(trim(changes%messages(i)))
+    end do
+    call status%add('restart: the deck differs from the one '''//trim(restart)// &
+        ''' was written with outside &control and &output; restore it, or give '// &
+        '--restart-force to restart anyway')
+  end subroutine restart_deck_check
 
   !> Rank 0 prints every input problem at once.
   subroutine report(status)
@@ -260,9 +309,11 @@ contains
     real(rk) :: wall_cycle_start, cycle_wall, wall_dump
     character(len=16) :: reason
     type(timer_t) :: halo
+    type(eta_t) :: eta
 
     code = EXIT_OK
     wall_start = wall_time()
+    call eta%add(wall_start, state%time)
     wall_status = wall_start
     wall_output = 0.0_rk
     ! Until the loop has written a dump, the time of a dump is estimated by the
@@ -402,8 +453,9 @@ contains
         case default
           reason = 'cfl'
         end select
+        call eta%add(wall_time(), state%time)
         call status_line(config, mesh, state, ctl, trim(reason), &
-            work_sum / max(wall_time() - wall_status, 1.0e-9_rk), wall_start)
+            work_sum / max(wall_time() - wall_status, 1.0e-9_rk), wall_start, eta)
         wall_status = wall_time()
         cycle_status = state%cycle
       end if
@@ -440,6 +492,15 @@ contains
         state%cycle, ' cycles, ', wall_time() - wall_start, ' s (', wall_output, &
         ' s of it in dumps)'
   end subroutine time_loop
+
+  !> The program's command line (as the process got it).
+  function command_line() result(text)
+    character(len=:), allocatable :: text
+    integer :: n
+    call get_command(length=n)
+    allocate(character(len=max(n, 1)) :: text)
+    call get_command(text)
+  end function command_line
 
   !> Seconds as text with two decimals, no leading blanks ('0.13', '3600.00').
   function seconds(value) result(text)
@@ -609,6 +670,9 @@ contains
         trim(config%output%directory), trim(config%output%prefix), state%cycle
     info%wall_seconds = wall_time() - wall_start
     info%reason = why
+    info%version = IMPACT3D_VERSION
+    info%command = command_line()
+    info%deck = config%deck_text
     names = ''
     do b = 1, size(config%blocks)
       if (b > 1) names = names//','
@@ -733,24 +797,30 @@ contains
         max(abs(state%energy_initial), tiny(1.0_rk))
   end function relative_error
 
-  subroutine status_line(config, mesh, state, ctl, reason, rate, wall_start)
+  !> One status line: cycle, time, step and its limiter, energy error, speed,
+  !> then progress: percent of t_end, wall time since the start (or restart)
+  !> and the time left at the recent rate (eta_t).
+  subroutine status_line(config, mesh, state, ctl, reason, rate, wall_start, eta)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
     type(control_t), intent(in) :: ctl
     character(len=*), intent(in) :: reason
     real(rk), intent(in) :: rate, wall_start
-    real(rk) :: sums(5), eta, elapsed
+    type(eta_t), intent(in) :: eta
+    real(rk) :: sums(5), left
+    character(len=:), allocatable :: eta_text
     call hydro_energies(mesh, state, sums)
     call par_sum_array(sums)
     if (par_rank() /= 0) return
-    elapsed = wall_time() - wall_start
-    eta = 0.0_rk
-    if (state%time > 0.0_rk) eta = elapsed * (config%t_end - state%time) / state%time
-    write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f9.1,a)') &
+    left = eta%seconds_left(config%t_end)
+    eta_text = '?'
+    if (left >= 0.0_rk) eta_text = seconds(left)//' s'
+    write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f5.1,a)') &
         'cycle', state%cycle, '  t=', state%time, '  dt=', state%dt, ' (', reason, ' zone ', &
         nint(ctl%dt_zone, i8), ')  dE/E=', relative_error(sums(1) + sums(2), state), &
-        '  ', rate, ' zone-cycles/s  ETA ', eta, ' s'
+        '  ', rate, ' zone-cycles/s  ', min(100.0_rk, 100.0_rk * state%time / config%t_end), &
+        '% done  elapsed '//seconds(wall_time() - wall_start)//' s  ETA '//eta_text
     flush(output_unit)
   end subroutine status_line
 
