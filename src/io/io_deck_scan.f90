@@ -24,8 +24,9 @@ module io_deck_scan
     character(len=KEY_LEN), allocatable :: key(:) !< key names (lower case, no index)
     character(len=KEY_LEN), allocatable :: key_full(:) !< with their index, if any
     integer, allocatable :: key_line(:), key_col(:) !< where each assignment starts
-    !> Each key's value text: comments dropped, blanks outside quotes removed,
-    !> no trailing comma (what a restart compares).
+    !> Each key's value text: comments dropped, blanks outside quotes removed
+    !> (a comma where they separate two items), no trailing comma (what a
+    !> restart compares and the type check reads).
     character(len=VALUE_LEN), allocatable :: value(:)
   end type group_instance_t
 
@@ -206,6 +207,7 @@ contains
     integer :: k, line, col, end_line, end_col, n
     character :: ch, quote
     character(len=VALUE_LEN) :: v
+    logical :: blank
     allocate(group%value(max(group%nkey, 1)))
     do k = 1, group%nkey
       if (k < group%nkey) then
@@ -220,11 +222,13 @@ contains
       v = ''
       n = 0
       quote = ' '
+      blank = .false.
       do while (line < end_line .or. (line == end_line .and. col <= end_col))
         if (col > len_trim(lines(line))) then
           line = line + 1
           col = 1
           if (quote /= ' ') call put(' ')
+          blank = .true.
           cycle
         end if
         ch = lines(line)(col:col)
@@ -234,10 +238,15 @@ contains
         else if (ch == '!') then
           col = len(lines(line)) + 1
           cycle
-        else if (ch == '''' .or. ch == '"') then
-          quote = ch
-          call put(ch)
-        else if (ch /= ' ' .and. ch /= achar(9)) then
+        else if (ch == ' ' .or. ch == achar(9)) then
+          blank = .true.
+        else
+          ! Blanks between two items separate them, as a comma does.
+          if (blank .and. n > 0 .and. ch /= ',') then
+            if (v(n:n) /= ',') call put(',')
+          end if
+          blank = .false.
+          if (ch == '''' .or. ch == '"') quote = ch
           call put(ch)
         end if
         col = col + 1
