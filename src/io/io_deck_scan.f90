@@ -271,8 +271,8 @@ contains
   end subroutine find_values
 
   !> What is wrong with a key's value for its type ('r' real, 'i' integer,
-  !> 'l' logical; 'c' character is not checked); '' when nothing. Real values
-  !> must be finite. The value is split into namelist items (commas, r*c
+  !> 'l' logical, 'c' character string in quotes); '' when nothing. Real
+  !> values must be finite. The value is split into namelist items (commas, r*c
   !> repeats and null values allowed).
   function value_problem(value, kind) result(problem)
     character(len=*), intent(in) :: value !< as in group_instance_t%value
@@ -282,7 +282,6 @@ contains
     character :: quote
     character(len=:), allocatable :: item
     problem = ''
-    if (kind == 'c') return
     start = 1
     quote = ' '
     do i = 1, len_trim(value) + 1
@@ -327,6 +326,12 @@ contains
     first = 1
     if (low(1:1) == '+' .or. low(1:1) == '-') first = 2
     select case (kind)
+    case ('c')
+      if (len(item) >= 2) then
+        if ((item(1:1) == '''' .or. item(1:1) == '"') .and. &
+            item(len(item):len(item)) == item(1:1)) return
+      end if
+      problem = shown // ' is not a character string (put it in quotes)'
     case ('l')
       if (low(1:1) == '.') first = 2
       if (len(low) >= first) then

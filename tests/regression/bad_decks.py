@@ -224,6 +224,10 @@ def build_cases():
                   max_errors=1))
     c.append(Case("real_for_integer", sub("  nz = 1\n", "  nz = 1.5\n"),
                   ["&mesh: nz: deck line 14: '1.5' is not an integer"], max_errors=1))
+    c.append(Case("string_without_quotes", sub("eos = 'ideal_gas'", "eos = ideal_gas"),
+                  ["&material(1): eos: deck line 17: 'ideal_gas' is not a character string "
+                   "(put it in quotes)"], absent=["eos: required", "Cannot match"],
+                  max_errors=1))
     c.append(Case("number_for_logical", append("&hydro q_limiter = 2 /\n"),
                   ["&hydro: q_limiter: deck line 38: '2' is not a logical"], max_errors=1))
     c.append(Case("bad_item_in_array",
