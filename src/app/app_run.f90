@@ -19,7 +19,8 @@ module app_run
       hydro_strength_update
   use io_deck, only: config_t, deck_read, deck_restart_check, output_directory_create
   use io_h5, only: h5_library_open, h5_library_close
-  use io_dump, only: dump_write, dump_read, dump_read_deck, dump_series_update, run_info_t
+  use io_dump, only: dump_write, dump_read, dump_read_deck, dump_series_update, run_info_t, &
+      DECK_TEXT_MAX
   use core_version, only: IMPACT3D_VERSION
   use app_eta, only: eta_t
   use app_setup, only: setup_mesh, setup_state
@@ -155,6 +156,12 @@ contains
     if (.not. found) then
       if (par_rank() == 0) write(error_unit, '(a)') 'impact3d: warning: '''//trim(restart)// &
           ''' holds no deck (an older dump): the deck is not compared with it'
+      return
+    end if
+    if (len(stored) >= DECK_TEXT_MAX) then
+      if (par_rank() == 0) write(error_unit, '(a,i0,a)') 'impact3d: warning: the deck '// &
+          'stored in '''//trim(restart)//''' was cut at ', DECK_TEXT_MAX, &
+          ' characters: the deck is not compared with it'
       return
     end if
     call deck_restart_check(stored, config%deck_text, changes)
