@@ -17,12 +17,12 @@ module app_run
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_time_step, hydro_energies, &
       hydro_strength_update
-  use io_deck, only: config_t, deck_read, deck_restart_check, output_directory_create
+  use io_deck, only: config_t, deck_read, output_directory_create
   use io_h5, only: h5_library_open, h5_library_close
-  use io_dump, only: dump_write, dump_read, dump_read_deck, dump_series_update, run_info_t, &
-      DECK_TEXT_MAX
+  use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
   use core_version, only: IMPACT3D_VERSION
   use app_eta, only: eta_t
+  use app_provenance, only: restart_deck_check, command_line
   use app_setup, only: setup_mesh, setup_state
   use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
       contact_report, &
@@ -139,50 +139,6 @@ contains
         wall_read, code)
     call h5_library_close(ierr, msg)
   end subroutine run_deck
-
-  !> A restart's deck against the deck stored in the dump: a change outside
-  !> &control and &output is an input error, or with force a warning.
-  subroutine restart_deck_check(restart, config, force, status)
-    character(len=*), intent(in) :: restart
-    type(config_t), intent(in) :: config
-    logical, intent(in) :: force
-    type(status_t), intent(inout) :: status
-    type(status_t) :: changes
-    character(len=:), allocatable :: stored
-    logical :: found
-    integer :: i
-    call dump_read_deck(restart, stored, found, status)
-    if (.not. status%ok()) return
-    if (.not. found) then
-      if (par_rank() == 0) write(error_unit, '(a)') 'impact3d: warning: '''//trim(restart)// &
-          ''' holds no deck (an older dump): the deck is not compared with it'
-      return
-    end if
-    if (len(stored) >= DECK_TEXT_MAX) then
-      if (par_rank() == 0) write(error_unit, '(a,i0,a)') 'impact3d: warning: the deck '// &
-          'stored in '''//trim(restart)//''' was cut at ', DECK_TEXT_MAX, &
-          ' characters: the deck is not compared with it'
-      return
-    end if
-    call deck_restart_check(stored, config%deck_text, changes)
-    if (changes%ok()) return
-    if (force) then
-      if (par_rank() == 0) then
-        do i = 1, min(changes%count, size(changes%messages))
-          write(error_unit, '(a)') 'impact3d: warning: '//trim(changes%messages(i))
-        end do
-        write(error_unit, '(a)') 'impact3d: warning: restarting with a changed deck '// &
-            '(--restart-force)'
-      end if
-      return
-    end if
-    do i = 1, min(changes%count, size(changes%messages))
-      call status%add(trim(changes%messages(i)))
-    end do
-    call status%add('restart: the deck differs from the one '''//trim(restart)// &
-        ''' was written with outside &control and &output; restore it, or give '// &
-        '--restart-force to restart anyway')
-  end subroutine restart_deck_check
 
   !> Rank 0 prints every input problem at once.
   subroutine report(status)
@@ -499,15 +455,6 @@ contains
         state%cycle, ' cycles, ', wall_time() - wall_start, ' s (', wall_output, &
         ' s of it in dumps)'
   end subroutine time_loop
-
-  !> The program's command line (as the process got it).
-  function command_line() result(text)
-    character(len=:), allocatable :: text
-    integer :: n
-    call get_command(length=n)
-    allocate(character(len=max(n, 1)) :: text)
-    call get_command(text)
-  end function command_line
 
   !> Seconds as text with two decimals, no leading blanks ('0.13', '3600.00').
   function seconds(value) result(text)
