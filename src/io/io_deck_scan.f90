@@ -361,6 +361,10 @@ contains
         problem = shown // ' is not a real number'
         return
       end if
+      if (overflows(low)) then
+        problem = shown // NOT_FINITE
+        return
+      end if
       read(low, *, iostat=ios) x
       if (ios /= 0) then
         problem = shown // NOT_FINITE
@@ -369,6 +373,65 @@ contains
       end if
     end select
   end function item_problem
+
+  !> Whether a real literal (real_syntax true, lower case) is beyond the
+  !> largest real(rk), found from its digits without converting it (a
+  !> conversion that overflows would trap in a build with FPE traps).
+  logical function overflows(text)
+    character(len=*), intent(in) :: text
+    character(len=*), parameter :: LARGEST = '17976931348623157' !< huge(1.0_rk)
+    integer, parameter :: LARGEST_EXPONENT = 308
+    character(len=len(text)) :: digits
+    integer :: i, n, nint, ndig, ios
+    integer(i8) :: ex, magnitude
+    logical :: point
+    character(len=len(LARGEST)) :: lead
+    overflows = .false.
+    n = len(text)
+    i = 1
+    if (text(1:1) == '+' .or. text(1:1) == '-') i = 2
+    ndig = 0
+    nint = 0
+    point = .false.
+    digits = ''
+    do while (i <= n)
+      if (text(i:i) == '.') then
+        point = .true.
+      else if (text(i:i) >= '0' .and. text(i:i) <= '9') then
+        if (ndig == 0 .and. text(i:i) == '0') then
+          if (point) nint = nint - 1
+        else
+          ndig = ndig + 1
+          digits(ndig:ndig) = text(i:i)
+          if (.not. point) nint = nint + 1
+        end if
+      else
+        exit
+      end if
+      i = i + 1
+    end do
+    if (ndig == 0) return
+    ex = 0
+    if (i <= n) then
+      if (index('edq', text(i:i)) > 0) i = i + 1
+      if (len_trim(text(i:)) > 12) then
+        overflows = text(i:i) /= '-'
+        return
+      end if
+      read(text(i:), *, iostat=ios) ex
+      if (ios /= 0) return
+    end if
+    magnitude = nint - 1 + ex
+    if (magnitude > LARGEST_EXPONENT) then
+      overflows = .true.
+    else if (magnitude == LARGEST_EXPONENT) then
+      lead = digits(1:min(ndig, len(lead)))
+      do i = ndig + 1, len(lead)
+        lead(i:i) = '0'
+      end do
+      overflows = lead > LARGEST
+    end if
+  end function overflows
 
   !> A Fortran real literal: sign, digits with an optional point (at least one
   !> digit), an optional exponent (e, d or q, or a bare sign) with digits.

@@ -38,6 +38,11 @@ program test_io_deck_scan
   call check_true('real ok', value_problem('1.0,-2,3.5d-3,.5,2*1e3', 'r') == '')
   call check_true('real overflow', index(value_problem('1.0e400', 'r'), 'not a finite') > 0)
   call check_true('real inf', index(value_problem('0.0,-Inf', 'r'), '''-Inf'' is not a finite') > 0)
+  call check_true('real largest', value_problem('1.7976931348623157e308,179.7e306', 'r') == '')
+  call check_true('real just above', index(value_problem('1.7976931348623158e308', 'r'), &
+      'not a finite') > 0)
+  call check_true('real 1e309', index(value_problem('0.001e312', 'r'), 'not a finite') > 0)
+  call check_true('real tiny', value_problem('1e-400,0.0e999,-0.0', 'r') == '')
   call check_true('real nan', index(value_problem('NaN', 'r'), 'not a finite') > 0)
   call check_true('real text', index(value_problem('''abc''', 'r'), '''abc'' is not a real') > 0)
   call check_true('real 1.4.2', index(value_problem('1.4.2', 'r'), 'not a real') > 0)
