@@ -176,9 +176,12 @@ contains
     character(len=KEY_LEN), allocatable :: tmp(:), tmp2(:)
     integer, allocatable :: itmp(:), itmp2(:)
     integer :: k
+    character(len=32) :: where
     do k = 1, group%nkey
-      if (group%key_full(k) == full) call status%add('&'//trim(group%name)//': '// &
-          trim(full)//': given twice in one group')
+      if (group%key_full(k) /= full) cycle
+      write(where, '(a,i0,a,i0)') ' (deck lines ', group%key_line(k), ' and ', line
+      call status%add('&'//trim(group%name)//': '//trim(full)//': given twice in one group'// &
+          trim(where)//')')
     end do
     if (group%nkey == size(group%key)) then
       allocate(tmp(2 * group%nkey), tmp2(2 * group%nkey), itmp(2 * group%nkey), &

@@ -147,7 +147,7 @@ def build_cases():
                    "&control: cfl: must be in (0, 1]"], min_errors=3))
     c.append(Case("repeated_key",
                   sub("  t_end = 0.05\n", "  t_end = 0.05, t_end = 2.0\n"),
-                  ["&control: t_end: given twice in one group"]))
+                  ["&control: t_end: given twice in one group (deck lines 4 and 4)"]))
     c.append(Case("material_unknown_strength",
                   sub("name = 'gas', eos", "name = 'gas', strength = 'rigid', eos"),
                   ["&material(1): strength: 'rigid' is not a strength model",
