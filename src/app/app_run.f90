@@ -17,9 +17,12 @@ module app_run
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_time_step, hydro_energies, &
       hydro_strength_update
-  use io_deck, only: config_t, deck_read
+  use io_deck, only: config_t, deck_read, output_directory_create
   use io_h5, only: h5_library_open, h5_library_close
   use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
+  use core_version, only: IMPACT3D_VERSION
+  use app_eta, only: eta_t
+  use app_provenance, only: restart_deck_check, command_line
   use app_setup, only: setup_mesh, setup_state
   use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
       contact_report, &
@@ -53,9 +56,10 @@ module app_run
 contains
 
   !> Run the deck; returns the process exit code (same on every rank).
-  subroutine run_deck(deck_path, restart_path, check_only, code)
+  subroutine run_deck(deck_path, restart_path, check_only, force, code)
     character(len=*), intent(in) :: deck_path, restart_path
     logical, intent(in) :: check_only !< validate the deck and set up, then stop
+    logical, intent(in) :: force !< restart even if groups that must not change did
     integer, intent(out) :: code
     type(config_t) :: config
     type(status_t) :: status
@@ -93,6 +97,8 @@ contains
       call par_bcast(exists)
       if (.not. exists) call status%add('&control: restart: file '''//trim(restart)// &
           ''' does not exist')
+      ! Before anything else: the deck against the one the dump was made with.
+      if (status%ok()) call restart_deck_check(restart, config, force, status)
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
     ! Initial penetration (may move nodes: before the nodal masses).
@@ -119,6 +125,12 @@ contains
     end if
     if (par_rank() == 0) call echo(config, mesh, restart)
     if (check_only) return
+    call output_directory_create(config%output%directory, status)
+    if (.not. status%ok()) then
+      call report(status)
+      code = EXIT_INPUT
+      return
+    end if
 
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
@@ -272,9 +284,11 @@ contains
     real(rk) :: wall_cycle_start, cycle_wall, wall_dump
     character(len=16) :: reason
     type(timer_t) :: halo
+    type(eta_t) :: eta
 
     code = EXIT_OK
     wall_start = wall_time()
+    call eta%add(wall_start, state%time)
     wall_status = wall_start
     wall_output = 0.0_rk
     ! Until the loop has written a dump, the time of a dump is estimated by the
@@ -431,8 +445,9 @@ contains
         case default
           reason = 'cfl'
         end select
+        call eta%add(wall_time(), state%time)
         call status_line(config, mesh, state, ctl, trim(reason), &
-            work_sum / max(wall_time() - wall_status, 1.0e-9_rk), wall_start)
+            work_sum / max(wall_time() - wall_status, 1.0e-9_rk), wall_start, eta)
         wall_status = wall_time()
         cycle_status = state%cycle
       end if
@@ -625,6 +640,9 @@ contains
         trim(config%output%directory), trim(config%output%prefix), state%cycle
     info%wall_seconds = wall_time() - wall_start
     info%reason = why
+    info%version = IMPACT3D_VERSION
+    info%command = command_line()
+    info%deck = config%deck_text
     names = ''
     do b = 1, size(config%blocks)
       if (b > 1) names = names//','
@@ -749,24 +767,30 @@ contains
         max(abs(state%energy_initial), tiny(1.0_rk))
   end function relative_error
 
-  subroutine status_line(config, mesh, state, ctl, reason, rate, wall_start)
+  !> One status line: cycle, time, step and its limiter, energy error, speed,
+  !> then progress: percent of t_end, wall time since the start (or restart)
+  !> and the time left at the recent rate (eta_t).
+  subroutine status_line(config, mesh, state, ctl, reason, rate, wall_start, eta)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
     type(control_t), intent(in) :: ctl
     character(len=*), intent(in) :: reason
     real(rk), intent(in) :: rate, wall_start
-    real(rk) :: sums(5), eta, elapsed
+    type(eta_t), intent(in) :: eta
+    real(rk) :: sums(5), left
+    character(len=:), allocatable :: eta_text
     call hydro_energies(mesh, state, sums)
     call par_sum_array(sums)
     if (par_rank() /= 0) return
-    elapsed = wall_time() - wall_start
-    eta = 0.0_rk
-    if (state%time > 0.0_rk) eta = elapsed * (config%t_end - state%time) / state%time
-    write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f9.1,a)') &
+    left = eta%seconds_left(config%t_end)
+    eta_text = '?'
+    if (left >= 0.0_rk) eta_text = seconds(left)//' s'
+    write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f5.1,a)') &
         'cycle', state%cycle, '  t=', state%time, '  dt=', state%dt, ' (', reason, ' zone ', &
         nint(ctl%dt_zone, i8), ')  dE/E=', relative_error(sums(1) + sums(2), state), &
-        '  ', rate, ' zone-cycles/s  ETA ', eta, ' s'
+        '  ', rate, ' zone-cycles/s  ', min(100.0_rk, 100.0_rk * state%time / config%t_end), &
+        '% done  elapsed '//seconds(wall_time() - wall_start)//' s  ETA '//eta_text
     flush(output_unit)
   end subroutine status_line
 

@@ -1,15 +1,17 @@
 !> impact3d: 3D staggered Lagrangian hydrocode with contact.
-!> Usage: impact3d [--check] [--restart dump.h5] deck.nml
+!> Usage: impact3d [--check] [--restart dump.h5 [--restart-force]] deck.nml
 program impact3d
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use app_run, only: run_deck, EXIT_OK, EXIT_INPUT
   use parallel_env, only: par_init, par_finalize, par_rank
   use io_deck, only: deck_known_keys
   use core_signal, only: signal_install
+  use core_exit, only: process_exit
+  use core_version, only: IMPACT3D_VERSION
   implicit none
   character(len=512) :: arg, deck, restart
   integer :: i, nargs, code
-  logical :: check_only, ok
+  logical :: check_only, ok, force
 
   call par_init()
   ! After MPI_Init, so that these handlers are the ones in force.
@@ -19,6 +21,7 @@ program impact3d
   deck = ''
   restart = ''
   check_only = .false.
+  force = .false.
   code = EXIT_OK
   nargs = command_argument_count()
   i = 0
@@ -28,13 +31,23 @@ program impact3d
     select case (trim(arg))
     case ('-h', '--help')
       if (par_rank() == 0) write(output_unit, '(a)') &
-          'usage: impact3d [--check] [--restart dump.h5] deck.nml', &
-          '  --keys       list every deck group and key', &
-          '  --check      validate the deck and set up the mesh, run nothing', &
-          '  --restart F  continue from dump F (same deck and mesh)'
+          'usage: impact3d [--check] [--restart dump.h5 [--restart-force]] deck.nml', &
+          '  --version        print the version and stop', &
+          '  --keys           list every deck group and key', &
+          '  --check          validate the deck and set up the mesh, run nothing', &
+          '  --restart F      continue from dump F (same deck and mesh; &control and', &
+          '                   &output may change)', &
+          '  --restart-force  restart even though other groups of the deck changed'
       check_only = .true.
       deck = '-'
       exit
+    case ('--version')
+      if (par_rank() == 0) write(output_unit, '(a)') 'impact3d '//IMPACT3D_VERSION
+      check_only = .true.
+      deck = '-'
+      exit
+    case ('--restart-force')
+      force = .true.
     case ('--keys')
       if (par_rank() == 0) call print_keys()
       check_only = .true.
@@ -65,23 +78,13 @@ program impact3d
   if (code == EXIT_OK .and. len_trim(deck) == 0) then
     code = EXIT_INPUT
     if (par_rank() == 0) write(error_unit, '(a)') &
-        'usage: impact3d [--check] [--restart dump.h5] deck.nml'
+        'usage: impact3d [--check] [--restart dump.h5 [--restart-force]] deck.nml'
   end if
   if (code == EXIT_OK .and. deck /= '-') call run_deck(trim(deck), trim(restart), check_only, &
-      code)
+      force, code)
   call par_finalize()
-  ! Variable stop codes are Fortran 2018; the codes are few. STOP with a code
-  ! sets the exit status without a runtime backtrace (the real message is out).
-  select case (code)
-  case (EXIT_OK)
-    continue
-  case (1)
-    stop 1
-  case (2)
-    stop 2
-  case default
-    stop 3
-  end select
+  ! The exit status without 'STOP n' on standard error (the message is out).
+  if (code /= EXIT_OK) call process_exit(code)
 contains
 
   !> Every deck group and its keys, one group per line.

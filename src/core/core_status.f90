@@ -15,6 +15,7 @@ module core_status
     procedure :: add => status_add
     procedure :: ok => status_ok
     procedure :: clear => status_clear
+    procedure :: forget => status_forget
   end type status_t
 
 contains
@@ -40,5 +41,23 @@ contains
     this%count = 0
     if (allocated(this%messages)) deallocate(this%messages)
   end subroutine status_clear
+
+  !> Forget the problems recorded after the first `after` ones whose text starts
+  !> with prefix (consequences of a problem already reported).
+  subroutine status_forget(this, after, prefix)
+    class(status_t), intent(inout) :: this
+    integer, intent(in) :: after !< problems 1..after are kept
+    character(len=*), intent(in) :: prefix
+    integer :: i, n, stored
+    if (.not. allocated(this%messages)) return
+    stored = min(this%count, MAX_MESSAGES)
+    n = after
+    do i = after + 1, stored
+      if (index(this%messages(i), prefix) == 1) cycle
+      n = n + 1
+      this%messages(n) = this%messages(i)
+    end do
+    this%count = this%count - (stored - n)
+  end subroutine status_forget
 
 end module core_status

@@ -5,7 +5,8 @@
 module io_deck
   use core_kinds, only: rk
   use core_status, only: status_t
-  use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, LINE_LEN, KEY_LEN
+  use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, value_problem, &
+      closest_name, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
   use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t, ball_spec_t, &
       box_minus_ball_spec_t
@@ -20,7 +21,8 @@ module io_deck
   use contact_enforce, only: contact_spec_t, SURFACE_LEN
   implicit none
   private
-  public :: deck_read, deck_known_keys
+  public :: deck_read, deck_known_keys, deck_key_types, deck_restart_check
+  public :: output_directory_create
 
   integer, parameter, public :: DECK_FORMAT_VERSION = 1
   integer, parameter, public :: PATH_LEN = 256
@@ -70,6 +72,11 @@ module io_deck
     character(len=LINE_LEN), allocatable :: text(:)
   end type section_t
 
+  !> Keys of a group instance left out of its namelist read (bad values).
+  type :: skip_t
+    logical, allocatable :: key(:)
+  end type skip_t
+
   !> Everything the deck says.
   type, public :: config_t
     character(len=80) :: title = ''
@@ -90,6 +97,7 @@ module io_deck
     type(contact_spec_t), allocatable :: contacts(:)
     type(output_options_t) :: output
     logical :: materials_read = .true. !< false when a &material could not be read
+    character(len=:), allocatable :: deck_text !< the deck file as read (for the dumps)
   end type config_t
 
 contains
@@ -140,6 +148,35 @@ contains
     end select
   end function deck_known_keys
 
+  !> The type of each key of deck_known_keys(group), in the same order: 'r'
+  !> real, 'i' integer, 'l' logical, 'c' character.
+  function deck_key_types(group) result(types)
+    character(len=*), intent(in) :: group
+    character(len=:), allocatable :: types
+    select case (group)
+    case ('control')
+      types = 'crii' // 'crrrrrr' // 'icrci'
+    case ('hydro')
+      types = 'rrllcr'
+    case ('mesh')
+      types = 'crrriii' // 'rrrrrrrr' // 'ciiirrrr' // 'irrrir' // 'ccrc' // 'rr'
+    case ('material')
+      types = 'cc' // 'rc' // 'rrrrrr' // 'crr' // 'rr' // 'rrrrr' // 'rrr' // 'rrrrrrrrr' // 'l'
+    case ('block')
+      types = 'ccr'
+    case ('region')
+      types = 'crrrrrrrrrrr'
+    case ('boundary')
+      types = 'ccrrrr'
+    case ('output')
+      types = 'ccriii'
+    case ('contact')
+      types = 'cccccrrrici' // 'rc' // 'rcc'
+    case default
+      types = ''
+    end select
+  end function deck_key_types
+
   !> Read, check and distribute the deck. On return status%count is the same
   !> on every rank; rank 0 holds the messages.
   subroutine deck_read(path, config, status)
@@ -148,12 +185,16 @@ contains
     type(status_t), intent(inout) :: status
     character(len=LINE_LEN), allocatable :: lines(:)
     type(group_instance_t), allocatable :: groups(:)
-    integer :: nline, ngroup, ig, ik, k, counts(NGROUP_KNOWN)
+    integer :: nline, ngroup, ig, ik, k, counts(NGROUP_KNOWN), first_read, nbad
     character(len=KEY_LEN), allocatable :: known(:)
     logical :: found
     type(section_t), allocatable :: sections(:)
+    type(skip_t), allocatable :: skips(:)
+    character(len=:), allocatable :: types, problem, guess
+    character(len=KEY_LEN + 20), allocatable :: bad(:)
+    character(len=16) :: lnum
 
-    call read_lines(path, lines, nline, status)
+    call read_lines(path, lines, nline, config%deck_text, status)
     if (.not. status%ok()) return
     call deck_scan(lines, groups, ngroup, status)
 
@@ -168,17 +209,52 @@ contains
         end if
       end do
       if (.not. found) then
-        call status%add('&'//trim(groups(ig)%name)//': unknown group (valid groups: '// &
-            join(GROUP_NAMES)//')')
+        write(lnum, '(i0)') groups(ig)%first_line
+        call status%add('&'//trim(groups(ig)%name)//': unknown group on deck line '// &
+            trim(lnum)//did_you_mean(closest_name(groups(ig)%name, GROUP_NAMES), '&')// &
+            ' (valid groups: '//join(GROUP_NAMES)//')')
         cycle
       end if
       known = deck_known_keys(trim(groups(ig)%name))
       do ik = 1, groups(ig)%nkey
-        if (.not. any(known == groups(ig)%key(ik))) call status%add('&'// &
-            trim(groups(ig)%name)//': '//trim(groups(ig)%key(ik))// &
-            ': unknown key (valid keys: '//join(known)//')')
+        if (any(known == groups(ig)%key(ik))) cycle
+        write(lnum, '(i0)') groups(ig)%key_line(ik)
+        guess = closest_name(groups(ig)%key(ik), known)
+        call status%add('&'//trim(groups(ig)%name)//': '//trim(groups(ig)%key(ik))// &
+            ': unknown key on deck line '//trim(lnum)//did_you_mean(guess, '')// &
+            ' (valid keys: '//join(known)//')')
       end do
     end do
+    ! Every value of a known key against the key's type, reals finite: the
+    ! key is named with its deck line, then left out of the namelist read (so
+    ! that the read does not stop on it).
+    allocate(skips(ngroup), bad(0))
+    do ig = 1, ngroup
+      allocate(skips(ig)%key(max(groups(ig)%nkey, 1)))
+      skips(ig)%key = .false.
+      known = deck_known_keys(trim(groups(ig)%name))
+      types = deck_key_types(trim(groups(ig)%name))
+      if (len(types) /= size(known)) call status%add('&'//trim(groups(ig)%name)// &
+          ': internal error: the key types do not match the keys')
+      if (len(types) /= size(known)) cycle
+      do ik = 1, groups(ig)%nkey
+        do k = 1, size(known)
+          if (known(k) /= groups(ig)%key(ik)) cycle
+          problem = value_problem(groups(ig)%value(ik), types(k:k))
+          if (len(problem) == 0) exit
+          write(lnum, '(i0)') groups(ig)%key_line(ik)
+          skips(ig)%key(ik) = .true.
+          bad = [character(len=KEY_LEN + 20) :: bad, instance_name(groups, ig)//': '// &
+              trim(groups(ig)%key(ik))//':']
+          call status%add(instance_name(groups, ig)//': '//trim(groups(ig)%key(ik))// &
+              ': deck line '//trim(lnum)//': '//problem)
+          exit
+        end do
+      end do
+    end do
+    nbad = size(bad)
+    first_read = status%count
+
     do k = 1, NGROUP_KNOWN
       select case (GROUP_NAMES(k))
       case ('control')
@@ -206,7 +282,7 @@ contains
     allocate(sections(ngroup))
     do ig = 1, ngroup
       known = deck_known_keys(trim(groups(ig)%name))
-      sections(ig)%text = group_text(lines, groups(ig), known)
+      sections(ig)%text = group_text(lines, groups(ig), known, skips(ig)%key)
     end do
     do ig = 1, ngroup
       associate(sect => sections(ig)%text)
@@ -247,7 +323,172 @@ contains
         end select
       end associate
     end do
+    ! A key whose value was rejected above was not read: what the groups then
+    ! say about that key (required, out of range) is not news.
+    do k = 1, nbad
+      call status%forget(first_read, trim(bad(k)))
+    end do
   end subroutine deck_read
+
+  !> Before a restart: the deck against the one stored in the dump. Every key
+  !> of &mesh, &material, &block, &region, &boundary, &contact and &hydro must
+  !> be the same (compared as parsed key = value, so comments and blanks may
+  !> change); &control and &output may change. Each difference is one problem
+  !> in status ('&material(1): gamma: changed since the restart dump ...').
+  subroutine deck_restart_check(stored_text, deck_text, status)
+    character(len=*), intent(in) :: stored_text !< deck text stored in the dump
+    character(len=*), intent(in) :: deck_text !< this run's deck text
+    type(status_t), intent(inout) :: status
+    character(len=8), parameter :: FIXED(7) = [character(len=8) :: 'mesh', 'material', &
+        'block', 'region', 'boundary', 'contact', 'hydro']
+    type(group_instance_t), allocatable :: old(:), new(:)
+    integer :: nold, nnew, g, i, j, k, io, in, count_old, count_new
+    type(status_t) :: scratch
+    character(len=16) :: a, b
+    character(len=:), allocatable :: where
+
+    call deck_scan(split_lines(stored_text), old, nold, scratch)
+    call deck_scan(split_lines(deck_text), new, nnew, scratch)
+    do g = 1, size(FIXED)
+      count_old = count(old(1:nold)%name == FIXED(g))
+      count_new = count(new(1:nnew)%name == FIXED(g))
+      if (count_old /= count_new) then
+        write(a, '(i0)') count_old
+        write(b, '(i0)') count_new
+        call status%add('&'//trim(FIXED(g))//': the restart dump''s deck has '//trim(a)// &
+            ' such group(s), this deck '//trim(b))
+        cycle
+      end if
+      ! The i-th instance in one deck against the i-th in the other.
+      io = 0
+      in = 0
+      do i = 1, count_new
+        io = next_instance(old, nold, FIXED(g), io)
+        in = next_instance(new, nnew, FIXED(g), in)
+        where = instance_name(new(1:nnew), in)
+        do k = 1, new(in)%nkey
+          j = find_key(old(io), new(in)%key_full(k))
+          if (j == 0) then
+            call status%add(where//': '//trim(new(in)%key_full(k))//': not in the restart '// &
+                'dump''s deck (given here as '//quoted(new(in)%value(k))//')')
+          else if (old(io)%value(j) /= new(in)%value(k)) then
+            call status%add(where//': '//trim(new(in)%key_full(k))//': changed since the '// &
+                'restart dump ('//quoted(old(io)%value(j))//' -> '//quoted(new(in)%value(k))//')')
+          end if
+        end do
+        do j = 1, old(io)%nkey
+          if (find_key(new(in), old(io)%key_full(j)) == 0) call status%add(where//': '// &
+              trim(old(io)%key_full(j))//': given in the restart dump''s deck ('// &
+              quoted(old(io)%value(j))//'), missing here')
+        end do
+      end do
+    end do
+
+  contains
+
+    integer function next_instance(groups, n, name, after)
+      type(group_instance_t), intent(in) :: groups(:)
+      integer, intent(in) :: n, after
+      character(len=*), intent(in) :: name
+      integer :: m
+      next_instance = 0
+      do m = after + 1, n
+        if (groups(m)%name == name) then
+          next_instance = m
+          return
+        end if
+      end do
+    end function next_instance
+
+    integer function find_key(group, key)
+      type(group_instance_t), intent(in) :: group
+      character(len=*), intent(in) :: key
+      integer :: m
+      find_key = 0
+      do m = 1, group%nkey
+        if (group%key_full(m) == key) then
+          find_key = m
+          return
+        end if
+      end do
+    end function find_key
+
+    function quoted(value) result(text)
+      character(len=*), intent(in) :: value
+      character(len=:), allocatable :: text
+      if (len_trim(value) > 60) then
+        text = '"'//value(1:57)//'..."'
+      else
+        text = '"'//trim(value)//'"'
+      end if
+    end function quoted
+
+  end subroutine deck_restart_check
+
+  !> A text split at its line ends (LF, CR LF) into deck lines.
+  function split_lines(text) result(lines)
+    character(len=*), intent(in) :: text
+    character(len=LINE_LEN), allocatable :: lines(:)
+    integer :: n, i, start, last
+    n = 0
+    do i = 1, len(text)
+      if (text(i:i) == achar(10)) n = n + 1
+    end do
+    if (len(text) > 0) then
+      if (text(len(text):len(text)) /= achar(10)) n = n + 1
+    end if
+    allocate(lines(max(n, 1)))
+    lines = ''
+    n = 0
+    start = 1
+    do i = 1, len(text) + 1
+      if (i <= len(text)) then
+        if (text(i:i) /= achar(10)) cycle
+      else if (start > len(text)) then
+        exit
+      end if
+      last = i - 1
+      if (last >= start) then
+        if (text(last:last) == achar(13)) last = last - 1
+      end if
+      n = n + 1
+      lines(n) = text(start:last)
+      start = i + 1
+    end do
+  end function split_lines
+
+  !> ' (did you mean 'x'?)' when there is a guess, else ''.
+  function did_you_mean(guess, prefix) result(text)
+    character(len=*), intent(in) :: guess, prefix
+    character(len=:), allocatable :: text
+    text = ''
+    if (len(guess) > 0) text = '; did you mean '''//prefix//guess//'''?'
+  end function did_you_mean
+
+  !> A group instance as the messages name it: '&control', '&mesh' (one part)
+  !> or '&mesh(2)', '&material(1)', ... (counted in deck order).
+  function instance_name(groups, ig) result(name)
+    type(group_instance_t), intent(in) :: groups(:)
+    integer, intent(in) :: ig
+    character(len=:), allocatable :: name
+    integer :: n, total, j
+    character(len=16) :: buffer
+    name = '&'//trim(groups(ig)%name)
+    select case (trim(groups(ig)%name))
+    case ('control', 'hydro', 'output')
+      return
+    end select
+    n = 0
+    total = 0
+    do j = 1, size(groups)
+      if (groups(j)%name /= groups(ig)%name) cycle
+      total = total + 1
+      if (j <= ig) n = n + 1
+    end do
+    if (trim(groups(ig)%name) == 'mesh' .and. total == 1) return
+    write(buffer, '(a,i0,a)') '(', n, ')'
+    name = name//trim(buffer)
+  end function instance_name
 
   function join(words) result(text)
     character(len=*), intent(in) :: words(:)
@@ -260,13 +501,14 @@ contains
     end do
   end function join
 
-  !> Rank 0 reads the file; every rank gets the lines.
-  subroutine read_lines(path, lines, nline, status)
+  !> Rank 0 reads the file; every rank gets the lines and the file's text.
+  subroutine read_lines(path, lines, nline, text, status)
     character(len=*), intent(in) :: path
     character(len=LINE_LEN), allocatable, intent(out) :: lines(:)
     integer, intent(out) :: nline
+    character(len=:), allocatable, intent(out) :: text !< the file, byte for byte
     type(status_t), intent(inout) :: status
-    integer :: unit, ios, i
+    integer :: unit, ios, i, nbyte
     character(len=LINE_LEN) :: buffer
     character(len=256) :: msg
     logical :: exists
@@ -291,12 +533,31 @@ contains
           allocate(lines(nline))
           do i = 1, nline
             read(unit, '(a)') lines(i)
+            if (len_trim(lines(i)) == LINE_LEN) nline = -3 - i
           end do
           close(unit)
         end if
       end if
     end if
+    nbyte = 0
+    if (par_rank() == 0 .and. nline > 0) then
+      open(newunit=unit, file=path, status='old', action='read', access='stream', &
+          form='unformatted', iostat=ios)
+      if (ios == 0) inquire(unit=unit, size=nbyte)
+      nbyte = max(nbyte, 0)
+      allocate(character(len=nbyte) :: text)
+      if (ios == 0 .and. nbyte > 0) read(unit, iostat=ios) text
+      if (ios == 0) close(unit)
+    end if
     call par_bcast(nline)
+    call par_bcast(nbyte)
+    if (.not. allocated(text)) allocate(character(len=nbyte) :: text)
+    if (nbyte > 0) call par_bcast(text)
+    if (nline < -2) then
+      write(msg, '(i0,a,i0,a)') -3 - nline, ': longer than ', LINE_LEN - 1, ' characters'
+      call status%add('deck: line '//trim(msg))
+      return
+    end if
     if (nline == 0) then
       call status%add('deck: file '''//trim(path)//''' is empty or not a text file')
       return
@@ -1360,7 +1621,6 @@ contains
     real(rk) :: dump_interval
     integer :: dump_cycles, status_every, history_every, ios
     character(len=256) :: msg
-    logical :: exists
     namelist /output/ directory, prefix, dump_interval, dump_cycles, status_every, history_every
 
     directory = out%directory
@@ -1378,9 +1638,7 @@ contains
     if (history_every < 1) call status%add('&output: history_every: must be >= 1')
     if (len_trim(prefix) == 0 .or. index(prefix, '/') > 0) call status%add('&output: '// &
         'prefix: must be a non-empty file name without ''/''')
-    inquire(file=trim(directory)//'/.', exist=exists)
-    if (.not. exists) call status%add('&output: directory: '''//trim(directory)// &
-        ''' does not exist')
+    if (len_trim(directory) == 0) call status%add('&output: directory: must not be empty')
     out%directory = directory
     out%prefix = prefix
     out%dump_interval = dump_interval
@@ -1388,5 +1646,41 @@ contains
     out%status_every = status_every
     out%history_every = history_every
   end subroutine read_output
+
+  !> Rank 0 creates the output directory with its parents when it is missing
+  !> (mkdir -p); a failure is a problem in status on every rank.
+  subroutine output_directory_create(directory, status)
+    character(len=*), intent(in) :: directory
+    type(status_t), intent(inout) :: status
+    logical :: exists
+    integer :: stat, cmdstat
+    character(len=:), allocatable :: quoted
+    integer :: i
+    stat = 0
+    if (par_rank() == 0) then
+      inquire(file=trim(directory)//'/.', exist=exists)
+      if (.not. exists) then
+        ! Single quotes for the shell, a quote inside as '\''.
+        quoted = ''''
+        do i = 1, len_trim(directory)
+          if (directory(i:i) == '''') then
+            quoted = quoted//'''\'''''
+          else
+            quoted = quoted//directory(i:i)
+          end if
+        end do
+        quoted = quoted//''''
+        cmdstat = 0
+        call execute_command_line('mkdir -p -- '//quoted//' 2>/dev/null', exitstat=stat, &
+            cmdstat=cmdstat)
+        if (cmdstat /= 0) stat = 1
+        inquire(file=trim(directory)//'/.', exist=exists)
+        if (.not. exists) stat = max(stat, 1)
+      end if
+    end if
+    call par_bcast(stat)
+    if (stat /= 0) call status%add('&output: directory: '''//trim(directory)// &
+        ''' does not exist and cannot be created')
+  end subroutine output_directory_create
 
 end module io_deck

@@ -9,18 +9,24 @@ module io_dump
   use io_h5, only: hid_t, h5_create_file, h5_open_file, h5_close_file, h5_write_real_rows, &
       h5_write_real_vector, h5_write_int_rows, h5_write_int_vector, h5_write_attr_real, &
       h5_write_attr_int, h5_write_attr_string, h5_read_real_rows, h5_read_real_vector, &
-      h5_read_attr_real, h5_read_attr_int, h5_read_attr_string, h5_dataset_rows, h5_create_group
+      h5_read_attr_real, h5_read_attr_int, h5_read_attr_string, h5_dataset_rows, h5_create_group, &
+      h5_path_exists
   use parallel_env, only: par_rank, par_size, par_comm_handle, par_info_null_handle, par_max
   implicit none
   private
-  public :: dump_write, dump_read, dump_series_update
+  public :: dump_write, dump_read, dump_read_deck, dump_series_update
 
   integer, parameter, public :: FORMAT_VERSION = 1
+  !> Longest deck text stored in a dump (an HDF5 attribute's header space).
+  integer, parameter, public :: DECK_TEXT_MAX = 60000
 
   !> Run metadata that may differ between runs; written under /run only.
   type, public :: run_info_t
     real(rk) :: wall_seconds = 0.0_rk
     character(len=32) :: reason = 'scheduled' !< why the dump was written
+    character(len=:), allocatable :: version !< of the program
+    character(len=:), allocatable :: command !< the command line
+    character(len=:), allocatable :: deck !< the deck file's text
   end type run_info_t
 
 contains
@@ -152,6 +158,19 @@ contains
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_write_attr_string(file, '/run', 'reason', info%reason, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    if (allocated(info%version)) then
+      call h5_write_attr_string(file, '/run', 'version', info%version, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end if
+    if (allocated(info%command)) then
+      call h5_write_attr_string(file, '/run', 'command', info%command, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end if
+    if (allocated(info%deck)) then
+      call h5_write_attr_string(file, '/run', 'deck', &
+          info%deck(1:min(len(info%deck), DECK_TEXT_MAX)), e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end if
     if (.not. agreed()) return
     call h5_close_file(file, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -374,6 +393,54 @@ contains
     write(unit, '(a)') '</Xdmf>'
     close(unit)
   end subroutine dump_series_update
+
+  !> The deck text stored in a dump's /run group (found false for a dump
+  !> written before it was stored). Collective; the same on every rank.
+  subroutine dump_read_deck(path, text, found, status)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable, intent(out) :: text
+    logical, intent(out) :: found
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: file
+    integer :: ierr, e
+    character(len=400) :: msg
+    character(len=:), allocatable :: buffer
+    logical :: exists
+
+    msg = ''
+    ierr = 0
+    found = .false.
+    text = ''
+    call h5_open_file(path, par_comm_handle(), par_info_null_handle(), file, e, msg)
+    if (e /= 0) ierr = e
+    if (.not. agreed()) return
+    call h5_path_exists(file, '/run', exists, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (exists .and. ierr == 0) then
+      allocate(character(len=DECK_TEXT_MAX + 1) :: buffer)
+      call h5_read_attr_string(file, '/run', 'deck', buffer, e, msg)
+      found = e == 0
+      if (found) text = trim(buffer)
+    end if
+    call h5_close_file(file, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (.not. agreed()) return
+    found = par_max(merge(0, 1, found)) == 0
+
+  contains
+
+    logical function agreed()
+      agreed = par_max(abs(ierr)) == 0
+      if (.not. agreed) then
+        if (ierr /= 0) then
+          call status%add('restart file '''//trim(path)//''': '//trim(msg))
+        else
+          call status%add('restart file '''//trim(path)//''': failed on another rank')
+        end if
+      end if
+    end function agreed
+
+  end subroutine dump_read_deck
 
   !> Read a dump into the state of a mesh built from the same deck: positions,
   !> velocities, masses, energies, restart state; ghosts refreshed by halos.

@@ -13,7 +13,10 @@ fresh temporary directory and checks that
      the reason, as in `input error: &control: t_end: required ...`),
   3. no *.h5 dump and no history.txt was written in the case directory,
   4. the summary line `impact3d: N input error(s); nothing was run` is there,
-     and N is the number of `input error:` lines printed.
+     and N is the number of `input error:` lines printed,
+  5. stderr holds none of the case's unwanted fragments (e.g. a consequence
+     of the planted defect reported as a second problem), and no 'STOP n'
+     line of the Fortran run-time library.
 
 A last case runs the base deck itself and must exit 0, so that the failures
 above are known to come from the planted defects. Standard library only.
@@ -118,11 +121,12 @@ def append(extra):
 
 class Case:
     def __init__(self, name, edit, expect, min_errors=1, deck_arg=None, expect_code=1,
-                 absent=()):
+                 absent=(), max_errors=None):
         self.name = name
+        self.absent = absent  # fragments that must not appear in stderr
+        self.max_errors = max_errors
         self.edit = edit  # base text -> bad text
         self.expect = expect  # fragments that must all appear in stderr
-        self.absent = absent  # fragments that must not appear in stderr
         self.min_errors = min_errors
         self.deck_arg = deck_arg  # callable(case_dir, deck_path) -> program argument
         self.expect_code = expect_code
@@ -132,8 +136,9 @@ def build_cases():
     c = []
     # --- groups and keys -------------------------------------------------
     c.append(Case("unknown_group", sub("&control\n", "&contorl\n"),
-                  ["&contorl: unknown group", "valid groups: control",
-                   "&control: required group is missing"], min_errors=2))
+                  ["&contorl: unknown group on deck line 2; did you mean '&control'?",
+                   "valid groups: control", "&control: required group is missing"],
+                  min_errors=2))
     c.append(Case("every_problem_at_once",
                   chain(sub("  t_end = 0.05\n", "  tend = 0.05\n"),
                         sub("  cfl = 0.5\n", "  cfl = 1.3\n")),
@@ -142,7 +147,7 @@ def build_cases():
                    "&control: cfl: must be in (0, 1]"], min_errors=3))
     c.append(Case("repeated_key",
                   sub("  t_end = 0.05\n", "  t_end = 0.05, t_end = 2.0\n"),
-                  ["&control: t_end: given twice in one group"]))
+                  ["&control: t_end: given twice in one group (deck lines 4 and 4)"]))
     c.append(Case("material_unknown_strength",
                   sub("name = 'gas', eos", "name = 'gas', strength = 'rigid', eos"),
                   ["&material(1): strength: 'rigid' is not a strength model",
@@ -191,12 +196,64 @@ def build_cases():
                   ["&mesh: block: 'plate' is not the name of a &block"]))
     c.append(Case("unknown_key_other_group",
                   sub("name = 'gas', eos", "name = 'gas', gama = 1.4, eos"),
-                  ["&material: gama: unknown key", "valid keys: name, eos, gamma"]))
+                  ["&material: gama: unknown key on deck line 17; did you mean 'gamma'?",
+                   "valid keys: name, eos, gamma"]))
+    c.append(Case("unknown_key_line_and_guess",
+                  sub("  cfl = 0.5\n", "  cfl = 0.5\n  max_cycle = 10\n"),
+                  ["&control: max_cycle: unknown key on deck line 6; "
+                   "did you mean 'max_cycles'?"], max_errors=1))
+    c.append(Case("unknown_key_no_guess",
+                  sub("  cfl = 0.5\n", "  cfl = 0.5\n  colour = 'red'\n"),
+                  ["&control: colour: unknown key on deck line 6 (valid keys: title"],
+                  absent=["did you mean"], max_errors=1))
+    # Values of the wrong type: group, key and deck line, and nothing about the
+    # key being missing (it was given, wrongly), no raw run-time library text.
     c.append(Case("syntax_error_in_value", sub("  nx = 10\n", "  nx = 1o\n"),
-                  ["&mesh: cannot read the group"]))
+                  ["&mesh: nx: deck line 10: '1o' is not an integer"],
+                  absent=["nx: required", "cannot read the group"], max_errors=1))
     c.append(Case("syntax_error_in_real",
                   sub("gamma = 1.4", "gamma = 1.4.2"),
-                  ["&material(1): cannot read the group"]))
+                  ["&material(1): gamma: deck line 17: '1.4.2' is not a real number"],
+                  absent=["gamma: required", "cannot read the group"], max_errors=1))
+    c.append(Case("string_for_real", sub("  t_end = 0.05\n", "  t_end = 'abc'\n"),
+                  ["&control: t_end: deck line 4: 'abc' is not a real number"],
+                  absent=["t_end: required", "Cannot match namelist"], max_errors=1))
+    c.append(Case("string_for_integer",
+                  sub("  status_every = 100\n", "  status_every = 'often'\n"),
+                  ["&output: status_every: deck line 36: 'often' is not an integer"],
+                  max_errors=1))
+    c.append(Case("real_for_integer", sub("  nz = 1\n", "  nz = 1.5\n"),
+                  ["&mesh: nz: deck line 14: '1.5' is not an integer"], max_errors=1))
+    c.append(Case("string_without_quotes", sub("eos = 'ideal_gas'", "eos = ideal_gas"),
+                  ["&material(1): eos: deck line 17: 'ideal_gas' is not a character string "
+                   "(put it in quotes)"], absent=["eos: required", "Cannot match"],
+                  max_errors=1))
+    c.append(Case("number_for_logical", append("&hydro q_limiter = 2 /\n"),
+                  ["&hydro: q_limiter: deck line 38: '2' is not a logical"], max_errors=1))
+    c.append(Case("bad_item_in_array",
+                  sub("density = 1.0, pressure = 1.0, box = 0.0, 0.5, -1, 1, -1, 1",
+                      "density = 1.0, pressure = 1.0, box = 0.0, 0.5, -1, one, -1, 1"),
+                  ["&region(1): box: deck line 23: 'one' is not a real number"],
+                  max_errors=1))
+    # Every real finite: overflow to infinity, Inf and NaN, in any group and
+    # any item of an array.
+    c.append(Case("real_overflow", sub("  t_end = 0.05\n", "  t_end = 1.0e400\n"),
+                  ["&control: t_end: deck line 4: '1.0e400' is not a finite number"],
+                  absent=["t_end: required"], max_errors=1))
+    c.append(Case("real_inf", sub("  cfl = 0.5\n", "  cfl = Inf\n"),
+                  ["&control: cfl: deck line 5: 'Inf' is not a finite number"],
+                  absent=["cfl: must be"], max_errors=1))
+    c.append(Case("real_nan", sub("gamma = 1.4", "gamma = NaN"),
+                  ["&material(1): gamma: deck line 17: 'NaN' is not a finite number"],
+                  absent=["gamma: required", "gamma: must be"], max_errors=1))
+    c.append(Case("real_minus_infinity_in_array", sub("  x = 0.0, 1.0\n",
+                                                      "  x = -Infinity, 1.0\n"),
+                  ["&mesh: x: deck line 9: '-Infinity' is not a finite number"],
+                  max_errors=1))
+    c.append(Case("real_overflow_in_region",
+                  sub("  density = 0.125,", "  velocity = 0.0, 0.125d999, 0.0, density = 0.125,"),
+                  ["&region(2): velocity: deck line 26: '0.125d999' is not a finite number"],
+                  max_errors=1))
     c.append(Case("missing_mesh_group", remove_group("&mesh"),
                   ["&mesh: required group is missing"]))
     c.append(Case("missing_material_group", remove_group("&material"),
@@ -471,9 +528,14 @@ def build_cases():
                       "set = 'xmax', type = 'symmetry', wall_normal = -1.0, 0.0, 0.0"),
                   ["&boundary(2): wall_normal: only for type = 'wall'"]))
     # --- &output ---------------------------------------------------------------
-    c.append(Case("output_directory_missing",
-                  sub("  directory = '{dir}'\n", "  directory = '{dir}/no_such_dir'\n"),
-                  ["&output: directory:", "no_such_dir' does not exist"]))
+    # A missing output directory is made (with its parents); one that cannot
+    # be made (a file is in the way) is an input error.
+    c.append(Case("output_directory_created",
+                  sub("  directory = '{dir}'\n", "  directory = '{dir}/new/sub dir'\n"),
+                  [], expect_code=0))
+    c.append(Case("output_directory_cannot_be_made",
+                  sub("  directory = '{dir}'\n", "  directory = '{dir}/deck.nml/out'\n"),
+                  ["&output: directory:", "deck.nml/out' does not exist and cannot be created"]))
     c.append(Case("output_prefix_with_slash",
                   sub("  status_every = 100\n", "  status_every = 100\n  prefix = 'run/a'\n"),
                   ["&output: prefix: must be a non-empty file name without '/'"]))
@@ -524,14 +586,17 @@ def run_case(case, program, launcher, top):
         return False, "cannot run %s: %s" % (" ".join(cmd), err), ""
     err_text = proc.stderr
     why = []
+    if re.search(r"^\s*STOP\b", err_text, re.M):
+        why.append("stderr holds a 'STOP' line of the run-time library")
     for frag in case.absent:
         if frag in err_text:
-            why.append("stderr has %r" % frag)
+            why.append("stderr holds the unwanted %r" % frag)
     if proc.returncode != case.expect_code:
         why.append("exit code %d, expected %d" % (proc.returncode, case.expect_code))
     outputs = written_outputs(case_dir)
     if case.expect_code == 0:
-        if not any(o.endswith(".h5") for o in outputs) or "history.txt" not in outputs:
+        if not any(o.endswith(".h5") for o in outputs) or \
+                not any(os.path.basename(o) == "history.txt" for o in outputs):
             why.append("valid run wrote no dump/history (found %s)" % outputs)
         if "input error" in err_text:
             why.append("valid run reported input errors")
@@ -553,6 +618,9 @@ def run_case(case, program, launcher, top):
             if n < case.min_errors:
                 why.append("summary counts %d error(s), expected at least %d"
                            % (n, case.min_errors))
+            if case.max_errors is not None and n > case.max_errors:
+                why.append("summary counts %d error(s), expected at most %d"
+                           % (n, case.max_errors))
             if n != lines:
                 why.append("summary counts %d error(s) but %d 'input error:' lines were "
                            "printed" % (n, lines))

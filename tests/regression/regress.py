@@ -32,6 +32,13 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   interface --deck D --np N --zones-tol 2 [compare args]
                                       two-block Riemann problem: the material interface
                                       and the shock within 2 local zone widths of exact
+  restartdeck --deck D --np A --restart-np B --from-cycle C
+                                      /run of the cycle-C dump holds the deck text (byte
+                                      for byte), version, command line and rank count; a
+                                      restart with &material gamma changed is refused
+                                      (exit 1, naming &material and gamma) unless
+                                      --restart-force; one with only comments, blanks and
+                                      &output changed ends bitwise identical
   twowave, shell_stop, stopfile, bars, mirror, patch: see their docstrings
   mirror   --deck D --reference WALL --axis z --tol T [--sym-tol S --all-dumps
            --energy-tol E --momentum-tol M --momentum-axes z --pair NAME]
@@ -159,6 +166,73 @@ def cmd_restart(args):
     if os.path.exists(mine):
         same, diff = h5same(full, mine)
         check("final dump bitwise identical after restart", same, diff)
+
+
+def cmd_restartdeck(args):
+    import h5py
+    wd = os.path.join(args.workdir, "full")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("uninterrupted run exits 0", code == 0, err[-2000:])
+    full = final_dump(wd)
+    start = os.path.join(wd, "dump_%06d.h5" % args.from_cycle)
+    check("mid-run dump exists", os.path.exists(start), start)
+    if code != 0 or not os.path.exists(start):
+        return
+    with open(args.deck) as f:
+        text = f.read()
+    with h5py.File(start, "r") as f:
+        attrs = dict(f["run"].attrs)
+    stored = attrs.get("deck", b"")
+    stored = stored.decode() if isinstance(stored, bytes) else str(stored)
+    check("/run deck equals the deck file's text", stored == text,
+          "%d vs %d characters" % (len(stored), len(text)))
+    version = attrs.get("version", b"")
+    version = version.decode() if isinstance(version, bytes) else str(version)
+    check("/run version is set", len(version) > 0, version)
+    command = attrs.get("command", b"")
+    command = command.decode() if isinstance(command, bytes) else str(command)
+    check("/run command names the program and the deck",
+          "impact3d" in command and "deck.nml" in command, command)
+    check("/run ranks is the rank count", int(attrs.get("ranks", -1)) == args.np,
+          str(attrs.get("ranks")))
+    if "gamma = " not in text:
+        check("deck has a gamma to change", False)
+        return
+    value = text.split("gamma = ")[1].split()[0].rstrip(",/")
+    changed = os.path.join(args.workdir, "changed_gamma.nml")
+    with open(changed, "w") as f:
+        f.write(text.replace("gamma = " + value, "gamma = 1.6667", 1))
+    wr = os.path.join(args.workdir, "refused")
+    code, out, err = run(args, args.restart_np, wr, changed,
+                         extra=["--restart", os.path.abspath(start)])
+    check("restart with gamma changed exits 1", code == 1, err[-2000:])
+    check("the refusal names &material and gamma",
+          re.search(r"&material(\(\d+\))?: gamma: changed", err) is not None, err[-2000:])
+    check("nothing written by the refused restart", not glob.glob(os.path.join(wr, "*.h5")))
+    wr = os.path.join(args.workdir, "forced")
+    code, out, err = run(args, args.restart_np, wr, changed,
+                         extra=["--restart", os.path.abspath(start), "--restart-force"])
+    check("restart with gamma changed and --restart-force exits 0", code == 0, err[-2000:])
+    check("--restart-force warns about gamma", "gamma" in err and "warning" in err,
+          err[-2000:])
+    # Comments, blanks and the output controls may change: the restart is the same run.
+    cosmetic = os.path.join(args.workdir, "cosmetic.nml")
+    lines = ["! restarted with a reformatted deck"]
+    for line in text.splitlines():
+        lines.append("   " + line.replace(" = ", "=").replace(", ", " ,  ")
+                     + ("  ! comment" if line.startswith("&") and line.rstrip().endswith("/")
+                        and "'" not in line.split("/")[-1] else ""))
+    with open(cosmetic, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    wr = os.path.join(args.workdir, "cosmetic")
+    code, out, err = run(args, args.restart_np, wr, cosmetic,
+                         extra=["--restart", os.path.abspath(start)])
+    check("restart with only comments and blanks changed exits 0", code == 0, err[-2000:])
+    check("and warns about nothing", "warning" not in err, err[-2000:])
+    mine = os.path.join(wr, os.path.basename(full))
+    if code == 0:
+        same, diff = h5same(full, mine) if os.path.exists(mine) else (False, mine)
+        check("final dump bitwise identical after the reformatted restart", same, diff)
 
 
 def cmd_energy(args):
@@ -1058,7 +1132,8 @@ def main():
                                         "convergence", "window", "interface", "stability",
                                         "wavefront", "rebound", "twowave", "shell_stop",
                                         "stopfile", "bars", "mirror", "patch", "relative",
-                                        "shape", "impact", "signal", "walllimit", "same"])
+                                        "shape", "impact", "signal", "walllimit", "same",
+                                        "restartdeck"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
