@@ -734,6 +734,19 @@ def cmd_relative(args):
         check("curved interface: largest radial penetration %.3e (t = %.3f, direction %s) "
               "<= %s" % (worst, time, np.array2string(direction, precision=3), limit),
               worst <= float(limit))
+        # The contact audit (the dumps' contact_gap) against the ray cast on
+        # the same faceting: they differ only by the direction they measure
+        # in (nearest point against radial), which on the faceted sphere is
+        # at most the half-angle of a segment, 1 - cos(h / 2R) < 1%; 10% is
+        # the bound the contact issue set. Dumps where the ray cast sees
+        # less than 1e-4 (round-off-scale overlap) are not compared.
+        import audit_vs_radial
+        ratios = [(t, a / r) for t, r, a in audit_vs_radial.compare(
+            wd, int(inner), int(outer), float(radius)) if r > 1e-4]
+        worst_ratio = max((abs(q - 1.0) for _, q in ratios), default=0.0)
+        check("audit agrees with the ray cast within 10%% at every dump (worst |ratio - 1| "
+              "%.4f over %d dumps)" % (worst_ratio, len(ratios)),
+              len(ratios) > 0 and worst_ratio <= 0.1)
 
 
 def report_contact_energy(workdir):
