@@ -498,7 +498,10 @@ contains
   subroutine audit(ct, state)
     type(contact_t), intent(inout) :: ct
     type(state_t), intent(inout) :: state
+    real(rk) :: t0
+    t0 = wall_time()
     call contact_audit_run(ct, state%node_position, state%cycle, state%time)
+    ct%audit_seconds = ct%audit_seconds + (wall_time() - t0)
     state%node_contact_gap = 0.0_rk
     state%node_contact_gap(ct%own_local) = ct%gap_own
   end subroutine audit

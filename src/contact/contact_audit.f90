@@ -43,6 +43,7 @@ module contact_audit
   use core_kinds, only: rk, ik
   use contact_surface, only: contact_surface_t, surface_node_index
   use contact_search, only: sort_real
+  use mesh_geometry, only: cross
   implicit none
   private
   public :: audit_gaps, segment_metrics, closest_on_triangle, node_tolerance
@@ -70,14 +71,6 @@ module contact_audit
   integer, parameter :: MAX_CELLS = 64
 
 contains
-
-  pure function cross(a, b) result(c)
-    real(rk), intent(in) :: a(3), b(3)
-    real(rk) :: c(3)
-    c(1) = a(2) * b(3) - a(3) * b(2)
-    c(2) = a(3) * b(1) - a(1) * b(3)
-    c(3) = a(1) * b(2) - a(2) * b(1)
-  end function cross
 
   !> Closest point q of triangle (a, b, c) to p and the feature holding it:
   !> FEATURE_FACE, 1..3 the edges ab, bc, ca, 4..6 the vertices a, b, c. The
@@ -233,8 +226,10 @@ contains
   !> `target` (> 0 outside the target's body, < 0 inside), with the segment
   !> of the closest point (0: none within reach, gap = reach). x is indexed
   !> by the node numbers of both surfaces. self: own and target are one
-  !> surface (self-contact rules above). Deterministic: the candidates of a
-  !> node are taken in ascending segment order, ties to the lower segment.
+  !> surface (self-contact rules above). Deterministic: the grid and the
+  !> order in which a node's candidates are visited depend only on the
+  !> surfaces and the node, so every rank finds the same closest point (an
+  !> exact tie goes to the first visited).
   subroutine audit_gaps(x, own, target, self, reach, selected, gap, hit, inward)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: own, target
@@ -267,7 +262,7 @@ contains
       node = own%nodes(i)
       p = x(:, node)
       if (self) call mark_rings(i)
-      ! Candidates: segments in the cells within reach, ascending.
+      ! Candidates: segments in the cells within reach.
       c1 = cell_of(p - reach)
       c2 = cell_of(p + reach)
       ncand = 0
@@ -286,7 +281,6 @@ contains
           end do
         end do
       end do
-      call sort_ints(cand(:ncand))
       best_d2 = reach**2
       best_s = 0
       best_k = 0
@@ -509,20 +503,5 @@ contains
     angle = atan2(norm2(cross(a - v, b - v)), dot_product(a - v, b - v))
   end function corner_angle
 
-  !> Sort integers ascending (insertion sort: candidate lists are short).
-  pure subroutine sort_ints(a)
-    integer, intent(inout) :: a(:)
-    integer :: i, j, v
-    do i = 2, size(a)
-      v = a(i)
-      j = i - 1
-      do while (j >= 1)
-        if (a(j) <= v) exit
-        a(j + 1) = a(j)
-        j = j - 1
-      end do
-      a(j + 1) = v
-    end do
-  end subroutine sort_ints
 
 end module contact_audit

@@ -1087,12 +1087,13 @@ contains
   subroutine contact_report(ct, loop_seconds)
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
-    real(rk) :: search, enforce, migrate, total, loop, whole, local, wait
+    real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit
     integer :: largest, smallest, k
     search = par_max(ct%search_seconds)
     enforce = par_max(ct%enforce_seconds)
     migrate = par_max(ct%migrate_seconds)
     wait = par_max(ct%wait_seconds)
+    audit = par_max(ct%audit_seconds)
     total = par_max(ct%search_seconds + ct%enforce_seconds + ct%migrate_seconds)
     largest = par_max(ct%ncn_max)
     smallest = -par_max(-ct%ncn_max)
@@ -1120,6 +1121,9 @@ contains
         ' s search and RCB, ', enforce, ' s enforcement, ', migrate, ' s migration (', &
         100.0_rk * total / max(loop, 1.0e-9_rk), &
         '% of the loop; largest over the ranks)'
+    write(output_unit, '(a,f10.3,a,i0,a,f6.1,a)') 'impact3d: contact audit ', audit, ' s (', &
+        ct%audits, ' audits, ', 100.0_rk * audit / max(loop, 1.0e-9_rk), &
+        '% of the loop; largest over the ranks, not in the contact times above)'
     if (par_size() > 1) write(output_unit, '(a,f10.3,a)') 'impact3d: contact entry wait ', &
         wait, ' s (the other ranks'' hydro: load imbalance; largest over the ranks, not in the '// &
         'contact times)'

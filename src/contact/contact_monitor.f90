@@ -352,6 +352,7 @@ contains
     where (ct%gap_own == huge(1.0_rk)) ct%gap_own = 0.0_rk
     ct%audit_due = .false.
     ct%audited_cycle = cycle
+    ct%audits = ct%audits + 1
 
   contains
 

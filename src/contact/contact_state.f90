@@ -178,7 +178,8 @@ module contact_state
     logical :: audit_due = .true. !< a search ran since the last audit
     integer(i8) :: audited_cycle = -1 !< cycle of the last audit
     logical :: stop_run = .false. !< on_penetration = 'stop' and the audit failed
-    real(rk) :: audit_seconds = 0.0_rk
+    real(rk) :: audit_seconds = 0.0_rk !< wall time in the audit (set by the caller)
+    integer :: audits = 0 !< audits run
   end type contact_t
 
   !> Initial penetration kept as an offset, per node of surfaces a and b

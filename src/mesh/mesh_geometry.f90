@@ -14,6 +14,7 @@ module mesh_geometry
   public :: hex_volume, hex_volume_gradient, hex_face_area, quad_vector_area
   public :: quad_node_area_vectors, hex_characteristic_length, hex_centroid
   public :: HEX_FACE_NODES, SIGN_XI, SIGN_ETA, SIGN_ZETA, HOURGLASS_BASE
+  public :: cross
 
   !> Local nodes of the six faces, ordered so the normal points outward.
   integer, parameter :: HEX_FACE_NODES(4, 6) = reshape([ &
@@ -34,6 +35,7 @@ module mesh_geometry
 
 contains
 
+  !> Cross product of two 3-vectors.
   pure function cross(a, b) result(c)
     real(rk), intent(in) :: a(3), b(3)
     real(rk) :: c(3)

@@ -174,6 +174,26 @@ def build_cases():
                   append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
                          "recovery = 0.8 /\n"),
                   ["&contact(1): recovery: must be in [0, 0.5]"]))
+    c.append(Case("contact_penetration_warning_replaced",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
+                         "penetration_warning = 0.01 /\n"),
+                  ["&contact(1): penetration_warning: replaced by penetration_tolerance"]))
+    c.append(Case("contact_penetration_tolerance_negative",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam', "
+                         "penetration_tolerance = -1.0 /\n"),
+                  ["&contact(1): penetration_tolerance: must be >= 0"]))
+    c.append(Case("contact_on_penetration_unknown",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam', "
+                         "on_penetration = 'abort' /\n"),
+                  ["&contact(1): on_penetration: 'abort' is not a choice (valid: warn, stop)"]))
+    c.append(Case("contact_initial_penetration_unknown",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
+                         "initial_penetration = 'push' /\n"),
+                  ["&contact(1): initial_penetration: 'push' is not a choice "
+                   "(valid: error, adjust, ignore)"]))
+    c.append(Case("mesh_rotation_without_axis",
+                  lambda t: t.replace("  nz = 1\n/", "  nz = 1\n  rotation_angle = 30.0\n/", 1),
+                  ["&mesh: rotation_axis: required with rotation_angle"]))
     c.append(Case("contact_recovery_for_combined",
                   append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
                          "form = 'combined', recovery = 0.1 /\n"),
