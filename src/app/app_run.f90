@@ -3,7 +3,7 @@
 !> MPI finalized, non-zero exit).
 module app_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan, ieee_value, ieee_quiet_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time, timer_t
@@ -11,47 +11,30 @@ module app_run
   use mesh_global, only: global_mesh_t
   use mesh_local, only: mesh_t
   use mesh_geometry, only: hex_centroid
-  use hydro_state, only: state_t, HOURGLASS_STIFFNESS
+  use hydro_state, only: state_t
   use hydro_boundary, only: boundary_t
-  use hydro_kernels, only: DT_CFL, DT_VOLUME
-  use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
-      hydro_energy_update, hydro_velocity_update, hydro_time_step, hydro_energies, &
-      hydro_strength_update
+  use hydro_kernels, only: DT_VOLUME
+  use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_energies
   use io_deck, only: config_t, deck_read, output_directory_create
   use io_h5, only: h5_library_open, h5_library_close
   use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
+  use io_history, only: history_open, history_write, relative_error
   use core_version, only: IMPACT3D_VERSION
   use app_eta, only: eta_t
   use app_provenance, only: restart_deck_check, command_line
   use app_setup, only: setup_mesh, setup_state
-  use contact_enforce, only: contact_t, contact_setup, contact_apply, contact_work_update, &
-      contact_report, &
-      contact_diagnostics, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
+  use solver_step, only: solver_lagrange_step
+  use solver_control, only: control_t, control_reduce, FAIL_NONE, FAIL_VOLUME, FAIL_NAN, &
+      FAIL_DT, STOP_NONE, STOP_FILE, STOP_WALL, STOP_SIGNAL
+  use contact_enforce, only: contact_t, contact_setup, contact_report
   use contact_monitor, only: contact_initial, contact_audit_run, contact_step_end
   use contact_state, only: initial_offsets_t
-  use parallel_env, only: par_rank, par_size, par_allgather, par_sum, par_sum_array, par_bcast, par_max
+  use parallel_env, only: par_rank, par_size, par_sum, par_sum_array, par_bcast, par_max
   implicit none
   private
   public :: run_deck
 
   integer, parameter, public :: EXIT_OK = 0, EXIT_INPUT = 1, EXIT_FAILURE = 2, EXIT_INCOMPLETE = 3
-  integer, parameter :: FAIL_NONE = 0, FAIL_VOLUME = 1, FAIL_NAN = 2, FAIL_DT = 3
-  integer, parameter :: NRECORD = 13
-  ! Clean-stop requests; the largest over the ranks wins.
-  integer, parameter :: STOP_NONE = 0, STOP_FILE = 1, STOP_WALL = 2, STOP_SIGNAL = 3
-
-  !> What the end-of-cycle reduction found.
-  type :: control_t
-    real(rk) :: dt = huge(1.0_rk) !< stable step
-    real(rk) :: dt_zone = 0.0_rk !< global id of the zone that sets it
-    real(rk) :: dt_position(3) = 0.0_rk !< and its centroid
-    integer :: dt_reason = DT_CFL
-    integer :: fail = FAIL_NONE
-    real(rk) :: fail_zone = 0.0_rk !< global id (zone or node)
-    real(rk) :: fail_position(3) = 0.0_rk
-    integer :: stop = STOP_NONE !< a clean stop requested (STOP file, wall-time limit, signal)
-    integer :: stop_signal = 0 !< with STOP_SIGNAL: the signal (largest number over the ranks)
-  end type control_t
 
 contains
 
@@ -134,7 +117,7 @@ contains
 
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
-    call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl)
+    call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl)
     if (ct%npair > 0) then
       allocate(state%node_contact_gap(size(state%node_position, 2)))
       state%node_contact_gap = 0.0_rk
@@ -186,80 +169,6 @@ contains
     call hydro_energies(mesh, state, sums)
     total_energy = par_sum(sums(1)) + par_sum(sums(2))
   end function total_energy
-
-  !> Local checks, local stable step, one collective: every rank learns the
-  !> global step (ties to the lowest zone id) and the first failure.
-  subroutine end_of_cycle_control(mesh, state, config, bad, bad_kind, ctl, stop_request, &
-      stop_signal)
-    type(mesh_t), intent(in) :: mesh
-    type(state_t), intent(in) :: state
-    type(config_t), intent(in) :: config
-    integer, intent(in) :: bad !< local zone with bad volume (0 = none) from the last update
-    integer, intent(in) :: bad_kind !< FAIL_VOLUME from an earlier stage, else FAIL_NONE
-    type(control_t), intent(out) :: ctl
-    integer, intent(in), optional :: stop_request !< this rank's STOP_* request
-    integer, intent(in), optional :: stop_signal !< with STOP_SIGNAL: the signal this rank caught
-    real(rk) :: record(NRECORD), dt
-    real(rk), allocatable :: all(:, :)
-    integer :: zone, reason, z, n, r, fail
-    real(rk) :: where(3), gid
-
-    call hydro_time_step(mesh, state, config%hydro, dt, zone, reason)
-    fail = FAIL_NONE
-    gid = 0.0_rk
-    where = 0.0_rk
-    if (bad > 0 .or. bad_kind /= FAIL_NONE) then
-      fail = FAIL_VOLUME
-      z = max(bad, 1)
-      gid = real(mesh%zone_gid(z), rk)
-      ! Where the zone was at the start of the cycle (its new corners may be garbage).
-      where = hex_centroid(state%node_position_old(:, mesh%zone_node(:, z)))
-    else
-      do z = 1, mesh%nzone_owned
-        if (ieee_is_nan(state%zone_energy(z))) then
-          fail = FAIL_NAN
-          gid = real(mesh%zone_gid(z), rk)
-          where = hex_centroid(state%node_position(:, mesh%zone_node(:, z)))
-          exit
-        end if
-      end do
-      if (fail == FAIL_NONE) then
-        do n = 1, mesh%nnode_owned
-          if (any(ieee_is_nan(state%node_velocity(:, n)))) then
-            fail = FAIL_NAN
-            gid = -real(mesh%node_gid(n), rk)
-            where = state%node_position(:, n)
-            exit
-          end if
-        end do
-      end if
-    end if
-    record = [dt, 0.0_rk, real(reason, rk), real(fail, rk), gid, where, 0.0_rk, 0.0_rk, 0.0_rk, &
-        0.0_rk, 0.0_rk]
-    if (present(stop_request)) record(12) = real(stop_request, rk)
-    if (present(stop_signal)) record(13) = real(stop_signal, rk)
-    if (zone > 0) then
-      record(2) = real(mesh%zone_gid(zone), rk)
-      record(9:11) = hex_centroid(state%node_position(:, mesh%zone_node(:, zone)))
-    end if
-    allocate(all(NRECORD, par_size()))
-    call par_allgather(record, all)
-    do r = 1, par_size()
-      if (all(1, r) < ctl%dt .or. (all(1, r) == ctl%dt .and. all(2, r) < ctl%dt_zone)) then
-        ctl%dt = all(1, r)
-        ctl%dt_zone = all(2, r)
-        ctl%dt_reason = nint(all(3, r))
-        ctl%dt_position = all(9:11, r)
-      end if
-      ctl%stop = max(ctl%stop, nint(all(12, r)))
-      ctl%stop_signal = max(ctl%stop_signal, nint(all(13, r)))
-      if (nint(all(4, r)) /= FAIL_NONE .and. ctl%fail == FAIL_NONE) then
-        ctl%fail = nint(all(4, r))
-        ctl%fail_zone = all(5, r)
-        ctl%fail_position = all(6:8, r)
-      end if
-    end do
-  end subroutine end_of_cycle_control
 
   !> The predictor-corrector loop.
   subroutine time_loop(config, mesh, state, mz, bc, ct, ctl, restarted, wall_begin, wall_read, &
@@ -345,7 +254,7 @@ contains
       end if
       if (dt < config%hydro%dt_min .and. .not. (last .or. dump_now)) then
         ctl%fail = FAIL_DT
-        ctl%fail_zone = ctl%dt_zone
+        ctl%fail_id = ctl%dt_zone
         ctl%fail_position = ctl%dt_position
         cycle
       end if
@@ -354,7 +263,8 @@ contains
 
       if (state%cycle + 1 == config%fault_cycle .and. config%fault_kind == 'tangle') &
           call inject_tangle(mesh, state)
-      call step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work, halo)
+      call solver_lagrange_step(config%hydro, config%materials, mesh, state, mz, bc, ct, dt, &
+          bad_half, bad, work, contact_work, halo)
       state%boundary_work = state%boundary_work + par_sum(work)
       if (ct%npair > 0) then
         state%contact_work = state%contact_work + par_sum(contact_work)
@@ -402,10 +312,10 @@ contains
       signum = signal_caught()
       if (signum /= 0) request = STOP_SIGNAL
       if (bad_half > 0) then
-        call end_of_cycle_control(mesh, state, config, bad_half, FAIL_VOLUME, ctl, request, &
+        call control_reduce(mesh, state, config%hydro, bad_half, FAIL_VOLUME, ctl, request, &
             signum)
       else
-        call end_of_cycle_control(mesh, state, config, bad, FAIL_NONE, ctl, request, signum)
+        call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl, request, signum)
       end if
       if (ctl%fail /= FAIL_NONE) cycle
       if (ctl%stop /= STOP_NONE .and. .not. last) then
@@ -537,92 +447,6 @@ contains
     end do
   end subroutine inject_tangle
 
-  !> One predictor-corrector cycle from t^n to t^n+1.
-  subroutine step(config, mesh, state, mz, bc, ct, dt, bad_half, bad, work, contact_work, halo)
-    type(config_t), intent(in) :: config
-    type(mesh_t), intent(inout) :: mesh
-    type(state_t), intent(inout) :: state
-    type(material_zones_t), intent(in) :: mz
-    type(boundary_t), intent(inout) :: bc
-    type(contact_t), intent(inout) :: ct
-    real(rk), intent(in) :: dt
-    integer, intent(out) :: bad_half, bad
-    real(rk), intent(out) :: work !< boundary work of the step (local)
-    real(rk), intent(out) :: contact_work !< contact work of the step (local)
-    type(timer_t), intent(inout) :: halo !< time in the node halo exchanges
-    real(rk) :: unused
-    integer :: n
-    logical :: strength
-
-    state%node_position_old = state%node_position
-    state%node_velocity_old = state%node_velocity
-    state%zone_energy_old = state%zone_energy
-
-    strength = allocated(state%zone_stress)
-
-    ! Predictor: forces at t^n, half-step velocities, geometry and EOS at t^n+1/2.
-    if (strength) then
-      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
-          state%node_velocity, 0.0_rk, state%zone_stress)
-    else
-      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
-          state%node_velocity, 0.0_rk)
-    end if
-    ! Contact acts on the predictor's half step too, as the rigid wall does:
-    ! otherwise the half-step geometry interpenetrates freely and the contact
-    ! pressure lags half a step (the mirror test shows it).
-    if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-        state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
-    call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
-    call halo%start()
-    call mesh%node_halo%exchange(state%node_velocity_half)
-    call halo%stop()
-    do n = 1, mesh%nnode
-      state%node_position(:, n) = state%node_position_old(:, n) + 0.5_rk * dt * &
-          state%node_velocity_half(:, n)
-    end do
-    call hydro_energy_update(mesh, state, state%node_velocity_half, 0.5_rk * dt)
-    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
-        state%node_position, state%node_velocity_half, bad_half)
-    if (strength) call hydro_strength_update(mesh, state, config%materials, mz, &
-        state%node_velocity_half, 0.5_rk * dt, state%zone_stress, state%zone_stress_half, .false.)
-
-    ! Corrector: forces at t^n+1/2, final velocities, positions and energies.
-    if (strength) then
-      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
-          state%node_velocity_half, dt, state%zone_stress_half)
-    else
-      call hydro_forces(mesh, state, config%hydro, bc, state%node_position, &
-          state%node_velocity_half, dt)
-    end if
-    ! Contact on the final update, boundary conditions re-imposed after it.
-    contact_work = 0.0_rk
-    if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-        state%node_force, dt, state%cycle + 1, .true., wall_time)
-    call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
-    if (ct%npair > 0) call contact_work_update(ct, state%node_velocity_old, &
-        state%node_velocity, dt, contact_work)
-    call halo%start()
-    call mesh%node_halo%exchange(state%node_velocity)
-    call halo%stop()
-    do n = 1, mesh%nnode
-      state%node_velocity_half(:, n) = 0.5_rk * (state%node_velocity_old(:, n) + &
-          state%node_velocity(:, n))
-      state%node_position(:, n) = state%node_position_old(:, n) + dt * &
-          state%node_velocity_half(:, n)
-    end do
-    call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
-    ! Deviatoric stress over the whole step: mid-step geometry, mean velocity.
-    if (strength) then
-      state%zone_stress_half = state%zone_stress
-      call hydro_strength_update(mesh, state, config%materials, mz, &
-          state%node_velocity_half, dt, state%zone_stress_half, state%zone_stress, .true.)
-    end if
-    if (config%hydro%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = &
-        state%zone_hourglass_new
-    call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
-        state%node_position, state%node_velocity, bad)
-  end subroutine step
 
   subroutine write_dump(config, mesh, state, why, wall_start, ok)
     type(config_t), intent(in) :: config
@@ -678,7 +502,7 @@ contains
       case (FAIL_VOLUME)
         what = 'zero or negative volume in zone'
       case (FAIL_NAN)
-        if (ctl%fail_zone < 0.0_rk) then
+        if (ctl%fail_id < 0) then
           what = 'NaN velocity at node'
         else
           what = 'NaN energy in zone'
@@ -687,7 +511,7 @@ contains
         what = 'time step below dt_min, set by zone'
       end select
       write(error_unit, '(a,1x,i0,a,3es14.6,a,i0,a,es14.6)') 'error: '//trim(what), &
-          nint(abs(ctl%fail_zone), i8), ' at (', ctl%fail_position, ') in cycle ', &
+          abs(ctl%fail_id), ' at (', ctl%fail_position, ') in cycle ', &
           state%cycle, ', time ', state%time
       if (ctl%fail == FAIL_DT) write(error_unit, '(a,es12.5,a,es12.5)') '  dt = ', ctl%dt, &
           ' < dt_min = ', config%hydro%dt_min
@@ -696,79 +520,6 @@ contains
     end if
     call write_dump(config, mesh, state, 'failure', wall_start, ok)
   end subroutine fail_stop
-
-  !> history.txt: a fresh file, or on restart the lines up to the restart cycle.
-  subroutine history_open(config, state, restarted)
-    type(config_t), intent(in) :: config
-    type(state_t), intent(in) :: state
-    logical, intent(in) :: restarted
-    integer :: unit, ios, n, k, j
-    character(len=4096) :: line
-    character(len=4096), allocatable :: keep(:)
-    character(len=:), allocatable :: header
-    integer(i8) :: c
-    character(len=:), allocatable :: path
-    logical :: exists
-    if (par_rank() /= 0) return
-    path = trim(config%output%directory)//'/history.txt'
-    allocate(keep(0))
-    inquire(file=path, exist=exists)
-    if (restarted .and. exists) then
-      open(newunit=unit, file=path, status='old', action='read')
-      read(unit, '(a)', iostat=ios) line
-      do
-        read(unit, '(a)', iostat=ios) line
-        if (ios /= 0) exit
-        read(line, *, iostat=ios) c
-        if (ios == 0 .and. c <= state%cycle) keep = [keep, line]
-      end do
-      close(unit)
-    end if
-    open(newunit=unit, file=path, status='replace', action='write')
-    header = '# cycle time dt internal_energy kinetic_energy boundary_work '// &
-        'total_energy energy_error momentum_x momentum_y momentum_z contact_work'
-    do k = 1, size(config%contacts)
-      do j = 1, CONTACT_DIAG_COUNT
-        header = header//' '//trim(config%contacts(k)%name)//'_'//trim(CONTACT_DIAG_NAMES(j))
-      end do
-    end do
-    write(unit, '(a)') header
-    do n = 1, size(keep)
-      write(unit, '(a)') trim(keep(n))
-    end do
-    close(unit)
-  end subroutine history_open
-
-  subroutine history_write(config, mesh, state, ct)
-    type(config_t), intent(in) :: config
-    type(mesh_t), intent(in) :: mesh
-    type(state_t), intent(in) :: state
-    type(contact_t), intent(in) :: ct
-    real(rk) :: sums(5), total
-    integer :: unit, k
-    call hydro_energies(mesh, state, sums)
-    call par_sum_array(sums)
-    if (par_rank() /= 0) return
-    total = sums(1) + sums(2)
-    open(newunit=unit, file=trim(config%output%directory)//'/history.txt', status='old', &
-        position='append', action='write')
-    write(unit, '(i0,10(1x,es23.15e3))', advance='no') state%cycle, state%time, state%dt, &
-        sums(1), sums(2), state%boundary_work, total, relative_error(total, state), sums(3:5)
-    write(unit, '(1x,es23.15e3)', advance='no') state%contact_work
-    do k = 1, ct%npair
-      write(unit, '(*(1x,es23.15e3))', advance='no') ct%pairs(k)%diag
-    end do
-    write(unit, '(a)') ''
-    close(unit)
-  end subroutine history_write
-
-  real(rk) function relative_error(total, state)
-    real(rk), intent(in) :: total
-    type(state_t), intent(in) :: state
-    relative_error = (total - state%boundary_work - state%contact_work - &
-        state%energy_initial) / &
-        max(abs(state%energy_initial), tiny(1.0_rk))
-  end function relative_error
 
   !> One status line: cycle, time, step and its limiter, energy error, speed,
   !> then progress: percent of t_end, wall time since the start (or restart)
@@ -791,7 +542,7 @@ contains
     if (left >= 0.0_rk) eta_text = seconds(left)//' s'
     write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f5.1,a)') &
         'cycle', state%cycle, '  t=', state%time, '  dt=', state%dt, ' (', reason, ' zone ', &
-        nint(ctl%dt_zone, i8), ')  dE/E=', relative_error(sums(1) + sums(2), state), &
+        ctl%dt_zone, ')  dE/E=', relative_error(sums(1) + sums(2), state), &
         '  ', rate, ' zone-cycles/s  ', min(100.0_rk, 100.0_rk * state%time / config%t_end), &
         '% done  elapsed '//seconds(wall_time() - wall_start)//' s  ETA '//eta_text
     flush(output_unit)

@@ -53,7 +53,7 @@ module contact_search
   implicit none
   private
   public :: segment_territory, bucket_search, closest_point, contact_kind, primary_pairs
-  public :: pair_excluded, search_interval, largest_relative_speed, segment_pair_search
+  public :: pair_excluded, search_interval, segment_pair_search
   public :: find_key, sort_real, sort_by_key, sort_unique
 
   !> No contact.
@@ -769,20 +769,6 @@ contains
       width = 2 * width
     end do
   end subroutine sort_by_key
-
-  !> Largest relative speed between any two nodes of the surfaces: twice the
-  !> largest speed (a bound that needs no pairing, O(N)).
-  pure function largest_relative_speed(v, nodes) result(speed)
-    real(rk), intent(in) :: v(:, :) !< (3, nnode) node velocities
-    integer(ik), intent(in) :: nodes(:) !< the surface nodes (global ids into v)
-    real(rk) :: speed
-    integer :: i
-    speed = 0.0_rk
-    do i = 1, size(nodes)
-      speed = max(speed, norm2(v(:, nodes(i))))
-    end do
-    speed = 2.0_rk * speed
-  end function largest_relative_speed
 
   !> Cycles between global searches such that no contact is missed: a node and
   !> a segment close at most at the relative speed `speed`; with a factor 2 of

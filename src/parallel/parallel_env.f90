@@ -6,9 +6,9 @@ module parallel_env
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
-  public :: par_init, par_finalize, par_abort, par_barrier
+  public :: par_init, par_finalize, par_abort
   public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle
-  public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_allgather, par_wtime
+  public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_allgather
 
   type(MPI_Comm) :: comm_world !< the run's communicator (set once)
   integer :: my_rank = 0 !< this rank
@@ -37,7 +37,7 @@ module parallel_env
 
   !> Gather one small record from every rank onto every rank.
   interface par_allgather
-    module procedure allgather_real, allgather_int
+    module procedure allgather_real, allgather_int, allgather_i8
   end interface par_allgather
 
 contains
@@ -67,11 +67,6 @@ contains
     error stop 1
   end subroutine par_abort
 
-  !> Synchronise every rank.
-  subroutine par_barrier()
-    call MPI_Barrier(comm_world)
-  end subroutine par_barrier
-
   !> This rank (0-based).
   integer function par_rank()
     par_rank = my_rank
@@ -97,12 +92,6 @@ contains
   integer function par_info_null_handle()
     par_info_null_handle = MPI_INFO_NULL%MPI_VAL
   end function par_info_null_handle
-
-  !> Wall-clock seconds.
-  function par_wtime() result(t)
-    real(rk) :: t
-    t = MPI_Wtime()
-  end function par_wtime
 
   subroutine bcast_int(x)
     integer(ik), intent(inout) :: x
@@ -219,5 +208,13 @@ contains
     call MPI_Allgather(record, size(record), MPI_INTEGER, all, size(record), &
         MPI_INTEGER, comm_world)
   end subroutine allgather_int
+
+  !> all(:, r+1) = record of rank r (64-bit integers: global ids).
+  subroutine allgather_i8(record, all)
+    integer(i8), intent(in) :: record(:)
+    integer(i8), intent(out) :: all(:, :)
+    call MPI_Allgather(record, size(record), MPI_INTEGER8, all, size(record), &
+        MPI_INTEGER8, comm_world)
+  end subroutine allgather_i8
 
 end module parallel_env

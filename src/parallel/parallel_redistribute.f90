@@ -7,7 +7,6 @@ module parallel_redistribute
   use parallel_env, only: par_comm, par_size, par_rank, par_abort
   implicit none
   private
-  public :: block_range
 
   !> Plan of one owner <-> block mapping.
   type, public :: redistribute_t

@@ -1,10 +1,10 @@
 !> Search interval: no contact can be missed between searches.
 program test_contact_interval
-  use core_kinds, only: rk, ik
-  use contact_search, only: search_interval, largest_relative_speed
+  use core_kinds, only: rk
+  use contact_search, only: search_interval
   use check, only: check_true, check_summary
   implicit none
-  real(rk) :: v(3, 4), dt, speed, margin, moved
+  real(rk) :: dt, speed, margin, moved
   integer :: k, j, trial, seed_size
   integer, allocatable :: seed(:)
   real(rk) :: r(4)
@@ -42,11 +42,5 @@ program test_contact_interval
     end if
   end do
   call check_true('random: 2000 cases consistent', trial > 2000)
-  ! Relative speed bound: twice the fastest node.
-  v = 0.0_rk
-  v(:, 2) = [3.0_rk, 4.0_rk, 0.0_rk]
-  v(:, 4) = [0.0_rk, 1.0_rk, 0.0_rk]
-  call check_true('relative speed bound = 2 max |v|', &
-      abs(largest_relative_speed(v, [1_ik, 2_ik, 4_ik]) - 10.0_rk) < 1.0e-14_rk)
   call check_summary()
 end program test_contact_interval

@@ -1,0 +1,92 @@
+!> history.txt: one `# ` header line naming the whitespace-separated
+!> columns, a row for cycle 0, then one row per history_every cycles (energy,
+!> momentum, boundary and contact work, the energy balance, and per contact
+!> interface its diagnostic columns `<name>_<quantity>`). Rank 0 writes it.
+module io_history
+  use core_kinds, only: rk, i8
+  use mesh_local, only: mesh_t
+  use hydro_state, only: state_t
+  use hydro_driver, only: hydro_energies
+  use contact_enforce, only: contact_t, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
+  use parallel_env, only: par_rank, par_sum_array
+  use io_deck, only: config_t
+  implicit none
+  private
+  public :: history_open, history_write, relative_error
+
+contains
+
+  !> history.txt: a fresh file, or on restart the lines up to the restart cycle.
+  subroutine history_open(config, state, restarted)
+    type(config_t), intent(in) :: config
+    type(state_t), intent(in) :: state
+    logical, intent(in) :: restarted
+    integer :: unit, ios, n, k, j
+    character(len=4096) :: line
+    character(len=4096), allocatable :: keep(:)
+    character(len=:), allocatable :: header
+    integer(i8) :: c
+    character(len=:), allocatable :: path
+    logical :: exists
+    if (par_rank() /= 0) return
+    path = trim(config%output%directory)//'/history.txt'
+    allocate(keep(0))
+    inquire(file=path, exist=exists)
+    if (restarted .and. exists) then
+      open(newunit=unit, file=path, status='old', action='read')
+      read(unit, '(a)', iostat=ios) line
+      do
+        read(unit, '(a)', iostat=ios) line
+        if (ios /= 0) exit
+        read(line, *, iostat=ios) c
+        if (ios == 0 .and. c <= state%cycle) keep = [keep, line]
+      end do
+      close(unit)
+    end if
+    open(newunit=unit, file=path, status='replace', action='write')
+    header = '# cycle time dt internal_energy kinetic_energy boundary_work '// &
+        'total_energy energy_error momentum_x momentum_y momentum_z contact_work'
+    do k = 1, size(config%contacts)
+      do j = 1, CONTACT_DIAG_COUNT
+        header = header//' '//trim(config%contacts(k)%name)//'_'//trim(CONTACT_DIAG_NAMES(j))
+      end do
+    end do
+    write(unit, '(a)') header
+    do n = 1, size(keep)
+      write(unit, '(a)') trim(keep(n))
+    end do
+    close(unit)
+  end subroutine history_open
+
+  subroutine history_write(config, mesh, state, ct)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    type(contact_t), intent(in) :: ct
+    real(rk) :: sums(5), total
+    integer :: unit, k
+    call hydro_energies(mesh, state, sums)
+    call par_sum_array(sums)
+    if (par_rank() /= 0) return
+    total = sums(1) + sums(2)
+    open(newunit=unit, file=trim(config%output%directory)//'/history.txt', status='old', &
+        position='append', action='write')
+    write(unit, '(i0,10(1x,es23.15e3))', advance='no') state%cycle, state%time, state%dt, &
+        sums(1), sums(2), state%boundary_work, total, relative_error(total, state), sums(3:5)
+    write(unit, '(1x,es23.15e3)', advance='no') state%contact_work
+    do k = 1, ct%npair
+      write(unit, '(*(1x,es23.15e3))', advance='no') ct%pairs(k)%diag
+    end do
+    write(unit, '(a)') ''
+    close(unit)
+  end subroutine history_write
+
+  real(rk) function relative_error(total, state)
+    real(rk), intent(in) :: total
+    type(state_t), intent(in) :: state
+    relative_error = (total - state%boundary_work - state%contact_work - &
+        state%energy_initial) / &
+        max(abs(state%energy_initial), tiny(1.0_rk))
+  end function relative_error
+
+end module io_history
