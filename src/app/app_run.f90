@@ -3,14 +3,12 @@
 !> MPI finalized, non-zero exit).
 module app_run
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
-  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time, timer_t
   use core_signal, only: signal_caught, signal_name
   use mesh_global, only: global_mesh_t
   use mesh_local, only: mesh_t
-  use mesh_geometry, only: hex_centroid
   use hydro_state, only: state_t
   use hydro_boundary, only: boundary_t
   use hydro_kernels, only: DT_VOLUME
@@ -19,11 +17,14 @@ module app_run
   use io_h5, only: h5_library_open, h5_library_close
   use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
   use io_history, only: history_open, history_write, relative_error
+  use io_output, only: status_line, seconds
   use core_version, only: IMPACT3D_VERSION
-  use app_eta, only: eta_t
+  use solver_eta, only: eta_t
   use app_provenance, only: restart_deck_check, command_line
   use app_setup, only: setup_mesh, setup_state
   use solver_step, only: solver_lagrange_step
+  use solver_schedule, only: schedule_t
+  use solver_fault, only: inject_nan, inject_tangle
   use solver_control, only: control_t, control_reduce, FAIL_NONE, FAIL_VOLUME, FAIL_NAN, &
       FAIL_DT, STOP_NONE, STOP_FILE, STOP_WALL, STOP_SIGNAL
   use contact_enforce, only: contact_t, contact_setup, contact_report
@@ -184,16 +185,18 @@ contains
     real(rk), intent(in) :: wall_begin !< start of the run, for the wall-time limit
     real(rk), intent(in) :: wall_read !< seconds the restart read took (0 for a new run)
     integer, intent(out) :: code
-    real(rk) :: dt, dt_stable, next_dump, work, wall_start, wall_status, work_sum, contact_work
+    real(rk) :: dt, work, wall_start, wall_status, work_sum, contact_work
     real(rk) :: wall_output, wall_mark, halo_max
     integer(i8) :: cycle_status
     integer :: bad, bad_half
-    logical :: last, dump_now, ok, exists, audit_now
+    logical :: ok, exists, step_ok
     integer :: request, signum
     real(rk) :: wall_cycle_start, cycle_wall, wall_dump
     character(len=16) :: reason
+    character(len=8) :: dump_why
     type(timer_t) :: halo
     type(eta_t) :: eta
+    type(schedule_t) :: plan
 
     code = EXIT_OK
     wall_start = wall_time()
@@ -214,9 +217,13 @@ contains
         return
       end if
     end if
-    next_dump = huge(1.0_rk)
-    if (config%output%dump_interval > 0.0_rk) next_dump = config%output%dump_interval * &
-        (aint(state%time / config%output%dump_interval + 1.0e-9_rk) + 1.0_rk)
+    plan = schedule_t(t_end=config%t_end, dt_max=config%hydro%dt_max, &
+        dt_min=config%hydro%dt_min, dt_growth=config%hydro%dt_growth, &
+        dt_initial=config%hydro%dt_initial, dump_interval=config%output%dump_interval, &
+        dump_cycles=config%output%dump_cycles, history_every=config%output%history_every, &
+        status_every=config%output%status_every, stop_check_every=config%stop_check_every, &
+        wall_limit=config%wall_limit)
+    call plan%start(state%time)
 
     do
       if (ctl%fail /= FAIL_NONE) then
@@ -235,24 +242,8 @@ contains
       end if
 
       ! Step: stability, growth, largest step, then exact landing on dumps and t_end.
-      dt_stable = min(ctl%dt, config%hydro%dt_max)
-      if (state%dt_previous > 0.0_rk) then
-        dt_stable = min(dt_stable, config%hydro%dt_growth * state%dt_previous)
-      else if (config%hydro%dt_initial > 0.0_rk) then
-        dt_stable = min(dt_stable, config%hydro%dt_initial)
-      end if
-      dt = dt_stable
-      last = .false.
-      dump_now = .false.
-      if (config%t_end - state%time <= dt * (1.0_rk + 1.0e-9_rk)) then
-        dt = config%t_end - state%time
-        last = .true.
-      end if
-      if (next_dump - state%time <= dt * (1.0_rk + 1.0e-9_rk)) then
-        dt = next_dump - state%time
-        dump_now = .true.
-      end if
-      if (dt < config%hydro%dt_min .and. .not. (last .or. dump_now)) then
+      call plan%choose_step(ctl%dt, state%dt_previous, state%time, dt, step_ok)
+      if (.not. step_ok) then
         ctl%fail = FAIL_DT
         ctl%fail_id = ctl%dt_zone
         ctl%fail_position = ctl%dt_position
@@ -270,17 +261,12 @@ contains
         state%contact_work = state%contact_work + par_sum(contact_work)
         call contact_step_end(ct)
       end if
-      state%time = state%time + dt
-      if (last) state%time = config%t_end
-      if (dump_now .and. abs(state%time - next_dump) <= 1.0e-9_rk * dt) state%time = next_dump
+      state%time = plan%land(state%time, dt)
       state%cycle = state%cycle + 1
-      state%dt_previous = dt_stable
+      state%dt_previous = plan%dt_stable
       ! The contact audit: after every global search and before every dump.
       if (ct%npair > 0) then
-        audit_now = ct%audit_due .or. dump_now .or. last
-        if (config%output%dump_cycles > 0) audit_now = audit_now .or. &
-            mod(state%cycle, int(config%output%dump_cycles, i8)) == 0
-        if (audit_now) call audit(ct, state)
+        if (ct%audit_due .or. plan%audit_due(state%cycle)) call audit(ct, state)
         if (ct%stop_run) then
           if (par_rank() == 0) write(error_unit, '(a)') '  writing a final dump and stopping'
           call history_write(config, mesh, state, ct)
@@ -299,11 +285,9 @@ contains
       request = STOP_NONE
       if (par_rank() == 0) then
         cycle_wall = wall_time() - wall_cycle_start
-        if (config%wall_limit > 0.0_rk) then
-          if (wall_time() - wall_begin + 3.0_rk * cycle_wall + 2.0_rk * wall_dump + 1.0_rk > &
-              config%wall_limit) request = STOP_WALL
-        end if
-        if (mod(state%cycle, int(config%stop_check_every, i8)) == 0) then
+        if (plan%wall_stop_due(wall_time() - wall_begin, cycle_wall, wall_dump)) &
+            request = STOP_WALL
+        if (plan%stop_check_due(state%cycle)) then
           inquire(file=trim(config%output%directory)//'/'//trim(config%stop_file), &
               exist=exists)
           if (exists) request = STOP_FILE
@@ -318,7 +302,7 @@ contains
         call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl, request, signum)
       end if
       if (ctl%fail /= FAIL_NONE) cycle
-      if (ctl%stop /= STOP_NONE .and. .not. last) then
+      if (ctl%stop /= STOP_NONE .and. .not. plan%last) then
         call history_write(config, mesh, state, ct)
         if (par_rank() == 0) then
           select case (ctl%stop)
@@ -345,9 +329,8 @@ contains
         return
       end if
 
-      if (mod(state%cycle, int(config%output%history_every, i8)) == 0 .or. last) &
-          call history_write(config, mesh, state, ct)
-      if (mod(state%cycle, int(config%output%status_every, i8)) == 0 .or. last) then
+      if (plan%history_due(state%cycle)) call history_write(config, mesh, state, ct)
+      if (plan%status_due(state%cycle)) then
         work_sum = real(mesh%nzone_global, rk) * real(state%cycle - cycle_status, rk)
         select case (ctl%dt_reason)
         case (DT_VOLUME)
@@ -362,20 +345,12 @@ contains
         cycle_status = state%cycle
       end if
       wall_mark = wall_time()
-      if (dump_now) then
-        next_dump = next_dump + config%output%dump_interval
-        if (.not. last) call write_dump(config, mesh, state, 'interval', wall_start, ok)
+      dump_why = plan%dump_reason(state%cycle)
+      if (len_trim(dump_why) > 0) then
+        call write_dump(config, mesh, state, trim(dump_why), wall_start, ok)
         if (.not. ok) then
           code = EXIT_FAILURE
           return
-        end if
-      else if (config%output%dump_cycles > 0 .and. .not. last) then
-        if (mod(state%cycle, int(config%output%dump_cycles, i8)) == 0) then
-          call write_dump(config, mesh, state, 'cycles', wall_start, ok)
-          if (.not. ok) then
-            code = EXIT_FAILURE
-            return
-          end if
         end if
       end if
       wall_dump = max(wall_dump, wall_time() - wall_mark)
@@ -395,15 +370,6 @@ contains
         ' s of it in dumps)'
   end subroutine time_loop
 
-  !> Seconds as text with two decimals, no leading blanks ('0.13', '3600.00').
-  function seconds(value) result(text)
-    real(rk), intent(in) :: value
-    character(len=:), allocatable :: text
-    character(len=24) :: buffer
-    write(buffer, '(f24.2)') value
-    text = trim(adjustl(buffer))
-  end function seconds
-
   !> The contact audit at x^n of the state; its gaps go to the dumps.
   subroutine audit(ct, state)
     type(contact_t), intent(inout) :: ct
@@ -415,38 +381,6 @@ contains
     state%node_contact_gap = 0.0_rk
     state%node_contact_gap(ct%own_local) = ct%gap_own
   end subroutine audit
-
-  !> Testing aid (&control fault_nan_cycle): a NaN energy in global zone 1.
-  subroutine inject_nan(mesh, state)
-    type(mesh_t), intent(in) :: mesh
-    type(state_t), intent(inout) :: state
-    integer :: z
-    do z = 1, mesh%nzone
-      if (mesh%zone_gid(z) == 1) state%zone_energy(z) = ieee_value(1.0_rk, ieee_quiet_nan)
-    end do
-  end subroutine inject_nan
-
-  !> Testing aid (&control fault_kind = 'tangle'): turn global zone 1 inside
-  !> out by mirroring its nodes through its centroid along x.
-  subroutine inject_tangle(mesh, state)
-    type(mesh_t), intent(in) :: mesh
-    type(state_t), intent(inout) :: state
-    integer :: z, k, n
-    real(rk) :: c(3)
-    logical :: moved(mesh%nnode)
-    moved = .false.
-    do z = 1, mesh%nzone
-      if (mesh%zone_gid(z) /= 1) cycle
-      c = hex_centroid(state%node_position(:, mesh%zone_node(:, z)))
-      do k = 1, 8
-        n = mesh%zone_node(k, z)
-        if (moved(n)) cycle
-        state%node_position(1, n) = 2.0_rk * c(1) - state%node_position(1, n)
-        moved(n) = .true.
-      end do
-    end do
-  end subroutine inject_tangle
-
 
   subroutine write_dump(config, mesh, state, why, wall_start, ok)
     type(config_t), intent(in) :: config
@@ -521,31 +455,5 @@ contains
     call write_dump(config, mesh, state, 'failure', wall_start, ok)
   end subroutine fail_stop
 
-  !> One status line: cycle, time, step and its limiter, energy error, speed,
-  !> then progress: percent of t_end, wall time since the start (or restart)
-  !> and the time left at the recent rate (eta_t).
-  subroutine status_line(config, mesh, state, ctl, reason, rate, wall_start, eta)
-    type(config_t), intent(in) :: config
-    type(mesh_t), intent(in) :: mesh
-    type(state_t), intent(in) :: state
-    type(control_t), intent(in) :: ctl
-    character(len=*), intent(in) :: reason
-    real(rk), intent(in) :: rate, wall_start
-    type(eta_t), intent(in) :: eta
-    real(rk) :: sums(5), left
-    character(len=:), allocatable :: eta_text
-    call hydro_energies(mesh, state, sums)
-    call par_sum_array(sums)
-    if (par_rank() /= 0) return
-    left = eta%seconds_left(config%t_end)
-    eta_text = '?'
-    if (left >= 0.0_rk) eta_text = seconds(left)//' s'
-    write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f5.1,a)') &
-        'cycle', state%cycle, '  t=', state%time, '  dt=', state%dt, ' (', reason, ' zone ', &
-        ctl%dt_zone, ')  dE/E=', relative_error(sums(1) + sums(2), state), &
-        '  ', rate, ' zone-cycles/s  ', min(100.0_rk, 100.0_rk * state%time / config%t_end), &
-        '% done  elapsed '//seconds(wall_time() - wall_start)//' s  ETA '//eta_text
-    flush(output_unit)
-  end subroutine status_line
 
 end module app_run

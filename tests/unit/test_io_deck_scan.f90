@@ -7,7 +7,7 @@ program test_io_deck_scan
   use io_deck_scan, only: deck_scan, group_instance_t, value_problem, edit_distance, &
       closest_name, LINE_LEN
   use io_deck, only: deck_restart_check, deck_known_keys, deck_key_types
-  use app_eta, only: eta_t
+  use solver_eta, only: eta_t
   use check, only: check_true, check_close, check_summary
   implicit none
   character(len=LINE_LEN), allocatable :: lines(:)

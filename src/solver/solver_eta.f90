@@ -1,7 +1,7 @@
 !> Time left in a run, from the recent rate: simulated time per wall-clock
 !> second over the last few status intervals (the rate changes during a run,
 !> e.g. as a shock sharpens the time step, so the whole-run average lags).
-module app_eta
+module solver_eta
   use core_kinds, only: rk
   implicit none
   private
@@ -47,4 +47,4 @@ contains
     left = max(t_end - this%time(this%last), 0.0_rk) * dwall / dtime
   end function eta_seconds_left
 
-end module app_eta
+end module solver_eta
