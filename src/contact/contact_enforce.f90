@@ -1038,7 +1038,7 @@ contains
   !> DAM at the parts, second round: the put-back-on of each enforced slave's
   !> normal velocity by RBF interpolation of the matched velocities vm of its
   !> master segment's nodes (docs/contact.md, 6); tangential motion is free
-  !> (frictionless). vm are the velocities after the master matching and
+  !> (frictionless unless friction is given). vm are the velocities after the master matching and
   !> before any put-back (in self-contact a master node may be a slave too).
   !> With Coulomb friction (deck friction > 0; docs/contact.md, 6.1) the
   !> slave's tangential velocity relative to the master's interpolated
