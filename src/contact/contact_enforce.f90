@@ -1038,8 +1038,9 @@ contains
   !> DAM at the parts, second round: the put-back-on of each enforced slave's
   !> normal velocity by RBF interpolation of the matched velocities vm of its
   !> master segment's nodes (docs/contact.md, 6); tangential motion is free
-  !> (frictionless unless friction is given). vm are the velocities after the master matching and
-  !> before any put-back (in self-contact a master node may be a slave too).
+  !> (frictionless unless friction is given). vm are the velocities after the
+  !> master matching and before any put-back (in self-contact a master node
+  !> may be a slave too).
   !> With Coulomb friction (deck friction > 0; docs/contact.md, 6.1) the
   !> slave's tangential velocity relative to the master's interpolated
   !> velocity (the same RBF weights) is reduced by at most friction times
