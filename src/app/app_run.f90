@@ -86,8 +86,12 @@ contains
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
     ! Initial penetration (may move nodes: before the nodal masses).
-    if (status%ok() .and. size(config%contacts) > 0) call contact_initial(config%contacts, &
-        global, offsets, status)
+    ! (Nested: Fortran does not short-circuit .and., and config%contacts is
+    ! not allocated when the deck could not be read.)
+    if (status%ok()) then
+      if (size(config%contacts) > 0) call contact_initial(config%contacts, global, offsets, &
+          status)
+    end if
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
     if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
         status, offsets)

@@ -87,7 +87,8 @@ module contact_enforce
       FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
       surface_geometry_t, interface_t, selection_t, contact_t, capture_of, initial_offsets_t
   use contact_audit, only: surface_sagitta, audit_reach
-  use contact_kernels, only: dlm_pair_force, dam_merged_normal_velocity, dam_put_back_velocity
+  use contact_kernels, only: dlm_pair_force, dam_merged_normal_velocity, dam_put_back_velocity, &
+      dlm_pair_friction, dam_friction_velocity
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
@@ -489,7 +490,13 @@ contains
     do j = 1, r%n
       i = int(r%id(1, j))
       k = int(r%id(2, j))
-      vfinal(:, i, k) = r%val(:, j)
+      if (r%id(3, j) > int(ct%nall, i8)) then
+        ! Friction reaction on a master node (dam_put_back): a momentum,
+        ! after the node's own put-back if it is a slave too (key order).
+        vfinal(:, i, k) = vfinal(:, i, k) + r%val(:, j) / ct%all_mass(ct%own_contact(i))
+      else
+        vfinal(:, i, k) = r%val(:, j)
+      end if
       has(i, k) = .true.
     end do
     do k = 1, ct%npair
@@ -714,7 +721,7 @@ contains
     real(rk), intent(in) :: dt !< the stage's step
     logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
     type(records_t), intent(inout) :: out !< the contributions, for the owners
-    real(rk), allocatable :: lambda(:), fc(:, :)
+    real(rk), allocatable :: lambda(:), fc(:, :), ft(:, :)
     logical, allocatable :: gated(:)
     real(rk) :: nrm(3), s0, pen, wh, wd
     real(rk) :: mh, md, fh_, fd_, vh, vd, mu, fh, w, sum_force, pen_max
@@ -764,6 +771,26 @@ contains
         lambda(q) = fh
       end do
     end do
+    ! Coulomb friction (docs/contact.md, 5.1), from the final normal force
+    ! of each pair. Skipped entirely without friction, so frictionless
+    ! results are bitwise those of the code before it.
+    if (p%spec%friction > 0.0_rk) then
+      allocate(ft(3, p%nfp))
+      ft = 0.0_rk
+      do q = 1, p%nfp
+        if (.not. lambda(q) < 0.0_rk) cycle
+        nodeh = p%fp_node(1, q)
+        noded = p%fp_node(2, q)
+        wh = p%fp_real(1, q)
+        wd = p%fp_real(2, q)
+        nrm = p%fp_real(5:7, q)
+        ft(:, q) = dlm_pair_friction(p%spec%friction, ct%mass(nodeh) * wh, &
+            ct%mass(noded) * wd, ct%v(:, nodeh), ct%v(:, noded), ct%f(:, nodeh) * wh, &
+            ct%f(:, noded) * wd, nrm, dt, lambda(q))
+        fc(:, nodeh) = fc(:, nodeh) + ft(:, q)
+        fc(:, noded) = fc(:, noded) - ft(:, q)
+      end do
+    end if
     ! The contributions: one per pair and node (in single-part mode, where
     ! Gauss-Seidel sweeps make the order global, one sum per node).
     if (p%single_part) then
@@ -774,8 +801,15 @@ contains
       do q = 1, p%nfp
         if (lambda(q) == 0.0_rk) cycle
         nrm = p%fp_real(5:7, q)
-        call add_record(out, ct%all_of(p%fp_node(1, q)), k, p%fp_key(q), lambda(q) * nrm)
-        call add_record(out, ct%all_of(p%fp_node(2, q)), k, p%fp_key(q), -(lambda(q) * nrm))
+        if (allocated(ft)) then
+          call add_record(out, ct%all_of(p%fp_node(1, q)), k, p%fp_key(q), &
+              lambda(q) * nrm + ft(:, q))
+          call add_record(out, ct%all_of(p%fp_node(2, q)), k, p%fp_key(q), &
+              -(lambda(q) * nrm + ft(:, q)))
+        else
+          call add_record(out, ct%all_of(p%fp_node(1, q)), k, p%fp_key(q), lambda(q) * nrm)
+          call add_record(out, ct%all_of(p%fp_node(2, q)), k, p%fp_key(q), -(lambda(q) * nrm))
+        end if
       end do
     end if
 
@@ -1004,8 +1038,16 @@ contains
   !> DAM at the parts, second round: the put-back-on of each enforced slave's
   !> normal velocity by RBF interpolation of the matched velocities vm of its
   !> master segment's nodes (docs/contact.md, 6); tangential motion is free
-  !> (frictionless). vm are the velocities after the master matching and
-  !> before any put-back (in self-contact a master node may be a slave too).
+  !> (frictionless unless friction is given). vm are the velocities after the
+  !> master matching and before any put-back (in self-contact a master node
+  !> may be a slave too).
+  !> With Coulomb friction (deck friction > 0; docs/contact.md, 6.1) the
+  !> slave's tangential velocity relative to the master's interpolated
+  !> velocity (the same RBF weights) is reduced by at most friction times
+  !> the put-back's normal velocity change, and each node of the master
+  !> segment gets the opposite momentum times its weight (the weights sum
+  !> to 1): records keyed after every put-back record (key > nall), which
+  !> dam_forces adds to the master's velocity as momentum.
   subroutine dam_put_back(ct, p, k, dt, vm, out)
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
@@ -1013,7 +1055,7 @@ contains
     real(rk), intent(in) :: dt !< the stage's step
     real(rk), intent(in) :: vm(:, :) !< (3, ncn) matched velocities of the local set
     type(records_t), intent(inout) :: out !< nv = 3: the slave's final velocity
-    real(rk) :: nrm(3), target, pen, pen_max, pen_sq, sum_force, vnew(3)
+    real(rk) :: nrm(3), target, pen, pen_max, pen_sq, sum_force, vnew(3), vmi(3), dv(3)
     integer :: q, n, c, active, npen
 
     active = 0
@@ -1032,6 +1074,20 @@ contains
             p%primary(q)%segment)), nrm)
       end do
       vnew = dam_put_back_velocity(vm(:, n), nrm, target)
+      if (p%spec%friction > 0.0_rk) then
+        vmi = 0.0_rk
+        do c = 1, 4
+          vmi = vmi + p%rbf(c, q) * vm(:, p%b%segments(c, p%primary(q)%segment))
+        end do
+        dv = dam_friction_velocity(p%spec%friction, vnew, vmi, nrm, &
+            target - dot_product(vm(:, n), nrm))
+        vnew = vnew + dv
+        do c = 1, 4
+          call add_record(out, ct%all_of(p%b%segments(c, p%primary(q)%segment)), k, &
+              int(ct%nall, i8) + 4_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), &
+              -(ct%mass(n) * p%rbf(c, q)) * dv)
+        end do
+      end if
       call add_record(out, ct%all_of(n), k, int(ct%all_of(n), i8), vnew)
       sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &
           ct%f(:, n), nrm), 0.0_rk)

@@ -26,11 +26,28 @@
 !> / m with the masses m, momenta p and forces f summed over the node and
 !> the shares; then the put-back: the slave's normal velocity becomes the
 !> master's interpolated one, its tangential velocity is kept.
+!>
+!> Coulomb friction (coefficient cf > 0; with cf = 0 the callers skip it):
+!> the tangential impulse that would stop the relative tangential velocity
+!> over the step (stick), scaled down to cf times the normal impulse when it
+!> is larger (slip), so directed against the relative tangential velocity.
+!>   DLM, per facet pair: with the free relative velocity at t + dt,
+!>   vr = (vh + dt fh/mh) - (vd + dt fd/md) (fh, fd the pair's shares of the
+!>   hydro node forces, full vectors) and its part vt normal to n, the
+!>   tangential force on the hitting side is -mu vt/dt (mu = mh md/(mh + md),
+!>   the same lumped masses as the normal force), at most cf |fn| in size (fn
+!>   the pair's normal force); the target side gets its opposite.
+!>   DAM, at the put-back: the slave's velocity change relative to the
+!>   master's interpolated velocity, tangential part, -vt, at most cf |dvn|
+!>   in size (dvn the put-back's change of the slave's normal velocity: the
+!>   normal impulse per unit mass); contact_enforce gives the masters the
+!>   opposite momentum.
 module contact_kernels
   use core_kinds, only: rk
   implicit none
   private
   public :: dlm_pair_force, dam_merged_normal_velocity, dam_put_back_velocity
+  public :: coulomb_limit, dlm_pair_friction, dam_friction_velocity
 
   integer, parameter, public :: KERNEL_COORDINATE = 1, KERNEL_VELOCITY = 2, KERNEL_COMBINED = 3
 
@@ -83,5 +100,44 @@ contains
     real(rk) :: v(3)
     v = vs + (target - dot_product(vs, nrm)) * nrm
   end function dam_put_back_velocity
+
+  !> Coulomb law: the stick value (impulse, force or velocity change) if its
+  !> size is within limit (>= 0), else scaled down to size limit (slip).
+  pure function coulomb_limit(stick, limit) result(t)
+    real(rk), intent(in) :: stick(3), limit
+    real(rk) :: t(3), size
+    size = norm2(stick)
+    if (size > limit) then
+      t = (limit / size) * stick
+    else
+      t = stick
+    end if
+  end function coulomb_limit
+
+  !> DLM: the tangential friction force of one facet pair on its hitting side
+  !> (the target side gets -ft); see the module notes.
+  pure function dlm_pair_friction(cf, mh, md, vh, vd, fh, fd, nrm, dt, fn) result(ft)
+    real(rk), intent(in) :: cf !< Coulomb coefficient
+    real(rk), intent(in) :: mh, md !< lumped masses of the two sides
+    real(rk), intent(in) :: vh(3), vd(3) !< their velocities at t
+    real(rk), intent(in) :: fh(3), fd(3) !< their shares of the hydro forces
+    real(rk), intent(in) :: nrm(3) !< the pair's unit normal
+    real(rk), intent(in) :: dt !< the stage's step
+    real(rk), intent(in) :: fn !< the pair's normal force on the hitting side (<= 0)
+    real(rk) :: ft(3), vr(3), vt(3)
+    vr = (vh + dt * fh / mh) - (vd + dt * fd / md)
+    vt = vr - dot_product(vr, nrm) * nrm
+    ft = coulomb_limit(-(mh * md / (mh + md)) * vt / dt, cf * abs(fn))
+  end function dlm_pair_friction
+
+  !> DAM: the friction change of a put-back slave's velocity vs (after the
+  !> normal put-back) relative to the master's interpolated velocity vm;
+  !> dvn: the put-back's change of the slave's normal velocity.
+  pure function dam_friction_velocity(cf, vs, vm, nrm, dvn) result(dv)
+    real(rk), intent(in) :: cf, vs(3), vm(3), nrm(3), dvn
+    real(rk) :: dv(3), vr(3)
+    vr = vs - vm
+    dv = coulomb_limit(-(vr - dot_product(vr, nrm) * nrm), cf * abs(dvn))
+  end function dam_friction_velocity
 
 end module contact_kernels

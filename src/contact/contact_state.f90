@@ -61,6 +61,8 @@ module contact_state
     !> removed over the step (Baumgarte-type position feedback; 0 = none;
     !> negative = not given in the deck: the default of contact_enforce)
     real(rk) :: recovery = -1.0_rk
+    !> Coulomb friction coefficient (0: frictionless, the friction code is skipped)
+    real(rk) :: friction = 0.0_rk
   end type contact_spec_t
 
   !> Geometry of one surface at x^n, computed once per cycle (in the

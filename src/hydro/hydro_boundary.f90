@@ -27,6 +27,8 @@ module hydro_boundary
     !> BC_WALL given by a plane: unit normal out of the wall into the body;
     !> not allocated: the wall is the set's plane at t = 0
     real(rk), allocatable :: wall_normal(:)
+    !> BC_WALL: Coulomb friction coefficient (0: frictionless)
+    real(rk) :: friction = 0.0_rk
   end type boundary_spec_t
 
   !> The conditions resolved on this rank's nodes.
@@ -49,6 +51,7 @@ module hydro_boundary
     real(rk), allocatable :: wall_normal(:, :) !< (3, nwall) unit normal pointing into the wall
     real(rk), allocatable :: wall_offset(:) !< the wall plane: normal . x = offset
     real(rk), allocatable :: wall_tolerance(:) !< distance within which a node is on the wall
+    real(rk), allocatable :: wall_friction(:) !< (nwall) Coulomb coefficient of the node's wall
     integer :: nkinematic = 0 !< owned nodes with a constraint or a wall (boundary work)
     integer, allocatable :: kinematic_node(:)
   end type boundary_t
@@ -279,8 +282,9 @@ contains
       integer :: iw, sg, ff, kk, nn, count_wall
       real(rk) :: offset, extent(3, 2), pts(3, 4)
       logical, allocatable :: is_wall(:), is_kin(:)
-      real(rk), allocatable :: nrm(:, :), off(:), tol(:)
-      allocate(is_wall(nowned), nrm(3, nowned), off(nowned), tol(nowned), is_kin(nowned))
+      real(rk), allocatable :: nrm(:, :), off(:), tol(:), fric(:)
+      allocate(is_wall(nowned), nrm(3, nowned), off(nowned), tol(nowned), is_kin(nowned), &
+          fric(nowned))
       is_wall = .false.
       do iw = 1, size(specs)
         if (specs(iw)%kind /= BC_WALL) cycle
@@ -309,13 +313,15 @@ contains
             nrm(:, nn) = normal(:, iw)
             off(nn) = offset
             tol(nn) = 1.0e-9_rk * norm2(extent(:, 2) - extent(:, 1))
+            fric(nn) = specs(iw)%friction
           end do
         end do
       end do
       count_wall = count(is_wall)
       bc%nwall = count_wall
       allocate(bc%wall_node(count_wall), bc%wall_normal(3, count_wall))
-      allocate(bc%wall_offset(count_wall), bc%wall_tolerance(count_wall))
+      allocate(bc%wall_offset(count_wall), bc%wall_tolerance(count_wall), &
+          bc%wall_friction(count_wall))
       kk = 0
       do nn = 1, nowned
         if (.not. is_wall(nn)) cycle
@@ -324,6 +330,7 @@ contains
         bc%wall_normal(:, kk) = nrm(:, nn)
         bc%wall_offset(kk) = off(nn)
         bc%wall_tolerance(kk) = tol(nn)
+        bc%wall_friction(kk) = fric(nn)
       end do
       is_kin = is_wall
       is_kin(bc%node(1:bc%nconstrained)) = .true.
@@ -370,6 +377,11 @@ contains
   !> on the step it would cross (no penetration beyond the half step of the
   !> impact). The same closing rule as the contact methods, so that a body
   !> hitting its mirror image through contact equals the body on the wall.
+  !> Coulomb friction (friction = mu > 0): a node held by the wall loses the
+  !> normal velocity vn (the normal impulse per unit mass), and its tangential
+  !> velocity vt (the wall is at rest) is reduced toward 0 by at most mu vn:
+  !> stopped when |vt| <= mu vn (stick), else by mu vn against vt (slip).
+  !> With mu = 0 none of it runs (results bitwise those without friction).
   subroutine boundary_wall(bc, x, v_old, v, step)
     type(boundary_t), intent(in) :: bc
     real(rk), intent(in) :: x(:, :) !< positions at the start of the step
@@ -377,7 +389,7 @@ contains
     real(rk), intent(inout) :: v(:, :) !< new velocities
     real(rk), intent(in) :: step
     integer :: k, n
-    real(rk) :: vn
+    real(rk) :: vn, vt(3), speed, limit
     do k = 1, bc%nwall
       n = bc%wall_node(k)
       vn = dot_product(bc%wall_normal(:, k), v(:, n))
@@ -385,6 +397,15 @@ contains
       if (.not. dot_product(bc%wall_normal(:, k), x(:, n) + 0.5_rk * step * &
           (v_old(:, n) + v(:, n))) > bc%wall_offset(k)) cycle
       v(:, n) = v(:, n) - vn * bc%wall_normal(:, k)
+      if (.not. bc%wall_friction(k) > 0.0_rk) cycle
+      vt = v(:, n) - dot_product(bc%wall_normal(:, k), v(:, n)) * bc%wall_normal(:, k)
+      speed = norm2(vt)
+      limit = bc%wall_friction(k) * vn
+      if (speed > limit) then
+        v(:, n) = v(:, n) - (limit / speed) * vt
+      else
+        v(:, n) = v(:, n) - vt
+      end if
     end do
   end subroutine boundary_wall
 

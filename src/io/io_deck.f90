@@ -134,7 +134,7 @@ contains
           'deposit_point']
     case ('boundary')
       keys = [character(len=KEY_LEN) :: 'set', 'type', 'velocity', 'pressure', 'wall_point', &
-          'wall_normal']
+          'wall_normal', 'friction']
     case ('output')
       keys = [character(len=KEY_LEN) :: 'directory', 'prefix', 'dump_interval', &
           'dump_cycles', 'status_every', 'history_every']
@@ -142,7 +142,7 @@ contains
       keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
           'capture', 'penetration_warning', 'search_margin', 'search_every', 'form', &
           'sweeps', 'recovery', 'normal', 'penetration_tolerance', 'on_penetration', &
-          'initial_penetration']
+          'initial_penetration', 'friction']
     case default
       allocate(keys(0))
     end select
@@ -167,11 +167,11 @@ contains
     case ('region')
       types = 'crrrrrrrrrrr'
     case ('boundary')
-      types = 'ccrrrr'
+      types = 'ccrrrrr'
     case ('output')
       types = 'ccriii'
     case ('contact')
-      types = 'cccccrrrici' // 'rc' // 'rcc'
+      types = 'cccccrrrici' // 'rc' // 'rcc' // 'r'
     case default
       types = ''
     end select
@@ -1406,11 +1406,11 @@ contains
     type(status_t), intent(inout) :: status
     character(len=NAME_LEN) :: set
     character(len=32) :: type
-    real(rk) :: velocity(3), pressure, wall_point(3), wall_normal(3)
+    real(rk) :: velocity(3), pressure, wall_point(3), wall_normal(3), friction
     integer :: ios
     character(len=256) :: msg
     character(len=16) :: where
-    namelist /boundary/ set, type, velocity, pressure, wall_point, wall_normal
+    namelist /boundary/ set, type, velocity, pressure, wall_point, wall_normal, friction
 
     write(where, '(a,i0,a)') '&boundary(', index, ')'
     set = ''
@@ -1419,6 +1419,7 @@ contains
     pressure = UNSET
     wall_point = UNSET
     wall_normal = UNSET
+    friction = UNSET
     read(sect, nml=boundary, iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(trim(where)//': cannot read the group: '//trim(msg))
@@ -1453,6 +1454,16 @@ contains
         ': velocity: only for type = ''velocity''')
     if (bc%kind /= BC_PRESSURE .and. pressure /= UNSET) call status%add(trim(where)// &
         ': pressure: only for type = ''pressure''')
+    if (friction /= UNSET) then
+      if (bc%kind /= BC_WALL) then
+        call status%add(trim(where)//': friction: only for type = ''wall'' (the Coulomb '// &
+            'coefficient of the rigid wall)')
+      else if (.not. (friction >= 0.0_rk)) then
+        call status%add(trim(where)//': friction: must be >= 0 (the Coulomb coefficient)')
+      else
+        bc%friction = friction
+      end if
+    end if
     call read_wall_plane()
 
   contains
@@ -1499,12 +1510,13 @@ contains
     character(len=SURFACE_LEN) :: surface_a, surface_b
     character(len=16) :: method, form, normal, on_penetration, initial_penetration
     real(rk) :: capture, penetration_warning, search_margin, recovery, penetration_tolerance
+    real(rk) :: friction
     integer :: search_every, sweeps, ios
     character(len=256) :: msg
     character(len=16) :: where
     namelist /contact/ name, surface_a, surface_b, method, master, capture, &
         penetration_warning, search_margin, search_every, form, sweeps, recovery, normal, &
-        penetration_tolerance, on_penetration, initial_penetration
+        penetration_tolerance, on_penetration, initial_penetration, friction
 
     write(where, '(a,i0,a)') '&contact(', index, ')'
     name = ''
@@ -1521,6 +1533,7 @@ contains
     search_every = pair%search_every
     sweeps = pair%sweeps
     recovery = pair%recovery
+    friction = pair%friction
     form = ''
     normal = ''
     read(sect, nml=contact, iostat=ios, iomsg=msg)
@@ -1610,6 +1623,9 @@ contains
           call status%add(trim(where)//': recovery: only for the DLM velocity form')
     end if
     pair%recovery = recovery
+    if (.not. (friction >= 0.0_rk)) call status%add(trim(where)// &
+        ': friction: must be >= 0 (the Coulomb coefficient; 0 = frictionless)')
+    pair%friction = friction
   end subroutine read_contact
 
   subroutine read_output(sect, out, status)

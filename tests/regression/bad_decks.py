@@ -526,6 +526,30 @@ def build_cases():
     c.append(Case("boundary_set_missing",
                   sub("set = 'zmax', type = 'symmetry'", "type = 'symmetry'"),
                   ["&boundary(6): set: required"]))
+    # Coulomb friction (issue 17 item 2): a coefficient >= 0, finite, and only
+    # on a rigid wall.
+    c.append(Case("boundary_friction_negative",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'wall', friction = -0.1"),
+                  ["&boundary(2): friction: must be >= 0"]))
+    c.append(Case("boundary_friction_nan",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'wall', friction = NaN"),
+                  ["&boundary(2): friction: deck line", "'NaN' is not a finite number"],
+                  absent=["must be >= 0"]))
+    c.append(Case("boundary_friction_not_wall",
+                  sub("set = 'xmax', type = 'symmetry'",
+                      "set = 'xmax', type = 'symmetry', friction = 0.2"),
+                  ["&boundary(2): friction: only for type = 'wall'"]))
+    c.append(Case("contact_friction_negative",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam', "
+                         "friction = -0.5 /\n"),
+                  ["&contact(1): friction: must be >= 0"]))
+    c.append(Case("contact_friction_infinite",
+                  append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
+                         "friction = Inf /\n"),
+                  ["&contact(1): friction: deck line", "'Inf' is not a finite number"],
+                  absent=["must be >= 0"]))
     # A wall given by a plane: both keys or neither, a nonzero normal, and the
     # set on the body side of the plane at t = 0.
     c.append(Case("boundary_wall_point_without_normal",

@@ -61,6 +61,12 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
   shape    --deck D --reference R --tol T
                                       Taylor rod: final length and foot diameter of D
                                       within T (relative) of R's
+  slide    --deck D --v0 V --friction MU --pressure P --area A --tol T [--pair NAME]
+                                      Coulomb friction: a block pressed on a plane by P
+                                      over its contact area A slides from V: deceleration
+                                      MU P A / m, stopping time and distance within T of
+                                      the analytic values; friction work = the block's
+                                      kinetic energy; energy balance to round-off
   same     --deck D --reference R --np N
                                       D and R write the same dumps, every one bitwise
                                       identical (h5diff, /run excluded): e.g. a material
@@ -148,7 +154,8 @@ def cmd_bitwise(args):
 
 def cmd_restart(args):
     wd = os.path.join(args.workdir, "full")
-    code, out, err = run(args, args.np, wd, args.deck)
+    deck = variant_deck(args) if args.replace else args.deck
+    code, out, err = run(args, args.np, wd, deck)
     check("uninterrupted run exits 0", code == 0, err[-2000:])
     full = final_dump(wd)
     start = os.path.join(wd, "dump_%06d.h5" % args.from_cycle)
@@ -156,7 +163,7 @@ def cmd_restart(args):
     if code != 0 or not os.path.exists(start):
         return
     wr = os.path.join(args.workdir, "restarted")
-    code, out, err = run(args, args.restart_np, wr, args.deck,
+    code, out, err = run(args, args.restart_np, wr, deck,
                          extra=["--restart", os.path.abspath(start)])
     check("restarted run on %d rank(s) exits 0" % args.restart_np, code == 0, err[-2000:])
     if code != 0:
@@ -794,6 +801,97 @@ def cmd_shape(args):
     print(out.strip().splitlines()[-2] if out.strip() else "")
 
 
+def cmd_slide(args):
+    """A block (block 1) pressed onto a fixed plane by an applied pressure
+    (--pressure over its contact area --area) slides along x from --v0 under
+    Coulomb friction (--friction). While it slides the friction force is
+    mu p A, so its velocity falls at a = mu p A / m (m its mass, from the
+    first dump) and it stops after v0/a, having moved v0^2/(2a).
+
+    Measured: deceleration: least-squares slope of the block's own mean
+    velocity (its nodes' momentum over its mass, from the dumps) over the
+    dumps with 0.2 v0 < v < 0.8 v0 (away from the start and the stop);
+    stopping time: the first cycle with momentum_x / m <= 0 in the history
+    (every cycle; the plane's x momentum, at most 2e-3 m v0 at every dump -
+    checked - shifts it by at most 0.2%); stopping distance: the
+    displacement of the block's centre of mass from the first dump to the
+    last (the run ends after the stop). Each within --tol of the analytic
+    value. Also: the energy balance to 1e-12
+    (friction work booked), and the friction work - the pair's work column
+    (--pair) or, without contact, the boundary work - ends within --tol of
+    minus the block's initial kinetic energy and never exceeds 1e-3 of it."""
+    import numpy as np
+    import dump
+    wd = os.path.join(args.workdir, "slide")
+    code, out, err = run(args, args.np, wd, args.deck)
+    check("run exits 0", code == 0, err[-2000:])
+    if code != 0:
+        return
+    header, rows = read_history(wd)
+    t = rows[:, header.index("time")]
+    dumps = sorted(glob.glob(os.path.join(wd, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
+    first = dump.load(dumps[0])
+    nodes = np.unique(first["connectivity"][first["block"] == 1].ravel())
+    m = first["node_mass"][nodes].sum()
+    v0 = args.v0
+    a = args.friction * args.pressure * args.area / m
+    t_stop = v0 / a
+    d_stop = v0 * v0 / (2.0 * a)
+    print("block mass %.6e; analytic deceleration %.6e, stopping time %.4f, distance %.5f"
+          % (m, a, t_stop, d_stop))
+    v = rows[:, header.index("momentum_x")] / m
+
+    def centre(d):
+        w = d["node_mass"][nodes]
+        return (w * d["coordinates"][nodes, 0]).sum() / w.sum()
+
+    worst = 0.0
+    last = None
+    td, vd = [], []
+    for path in dumps:
+        d = dump.load(path)
+        time = float(d["attrs"]["time"])
+        last = d
+        mine = (d["node_mass"][nodes] * d["node_velocity"][nodes, 0]).sum()
+        td.append(time)
+        vd.append(mine / m)
+        j = np.argmin(np.abs(t - time))
+        if time > 0.0 and abs(t[j] - time) <= 1e-9 * max(time, 1.0):
+            worst = max(worst, abs(rows[j, header.index("momentum_x")] - mine))
+    check("x momentum of the plane at the dumps within %.3e of m v0 (<= 2e-3)"
+          % (worst / (m * v0)), worst <= 2e-3 * m * v0)
+    td, vd = np.array(td), np.array(vd)
+    sliding = (vd > 0.2 * v0) & (vd < 0.8 * v0)
+    slope = np.polyfit(td[sliding], vd[sliding], 1)[0]
+    check("deceleration %.6e vs mu p A / m = %.6e within %.1f%% (%+.3f%%, %d dumps)"
+          % (-slope, a, 100 * args.tol, 100 * (-slope / a - 1), sliding.sum()),
+          sliding.sum() >= 10 and abs(-slope / a - 1) <= args.tol)
+    stopped = np.where(v <= 0.0)[0]
+    check("the block stops", stopped.size > 0)
+    if stopped.size:
+        ts = t[stopped[0]]
+        check("stopping time %.4f vs v0/a = %.4f within %.1f%% (%+.3f%%)"
+              % (ts, t_stop, 100 * args.tol, 100 * (ts / t_stop - 1)),
+              abs(ts / t_stop - 1) <= args.tol)
+    dist = centre(last) - centre(first)
+    check("stopping distance %.5f vs v0^2/(2a) = %.5f within %.1f%% (%+.3f%%)"
+          % (dist, d_stop, 100 * args.tol, 100 * (dist / d_stop - 1)),
+          abs(dist / d_stop - 1) <= args.tol)
+    vend = (last["node_mass"][nodes] * last["node_velocity"][nodes, 0]).sum() / m
+    check("at rest at the end: |v| = %.3e <= 1%% of v0" % abs(vend), abs(vend) <= 0.01 * v0)
+    err_max = np.abs(rows[:, header.index("energy_error")]).max()
+    check("energy balance with friction work: max |energy_error| %.3e <= 1e-12" % err_max,
+          err_max <= 1e-12)
+    col = (args.pair + "_work") if args.pair in [h[:-5] for h in header if
+                                                  h.endswith("_work")] else "boundary_work"
+    work = rows[:, header.index(col)]
+    ke0 = 0.5 * m * v0 * v0
+    check("friction work (%s) %.6e = -(initial kinetic energy %.6e) within %.1f%%, "
+          "never above 1e-3 of it (max %.3e)" % (col, work[-1], ke0, 100 * args.tol,
+                                                  work.max()),
+          abs(-work[-1] / ke0 - 1) <= args.tol and work.max() <= 1e-3 * ke0)
+
+
 def cmd_same(args):
     """--deck and --reference, run on --np ranks, write the same dumps and every one
     is bitwise identical (h5diff, /run excluded)."""
@@ -1146,7 +1244,7 @@ def main():
                                         "wavefront", "rebound", "twowave", "shell_stop",
                                         "stopfile", "bars", "mirror", "patch", "relative",
                                         "shape", "impact", "signal", "walllimit", "same",
-                                        "restartdeck"])
+                                        "restartdeck", "slide"])
     p.add_argument("--exe", required=True)
     p.add_argument("--mpiexec", default="mpirun")
     p.add_argument("--workdir", required=True)
@@ -1204,8 +1302,12 @@ def main():
                    help="mirror: largest |energy_error| of both runs; relative: of the "
                         "contact run (0: not checked)")
     p.add_argument("--compare-args", default="", help="extra arguments for compare.py")
+    p.add_argument("--v0", type=float, help="slide: the block's initial speed along x")
+    p.add_argument("--friction", type=float, help="slide: the Coulomb coefficient")
+    p.add_argument("--pressure", type=float, help="slide: the applied pressure")
     p.add_argument("--replace", nargs=2, action="append", metavar=("OLD", "NEW"),
-                   help="signal, walllimit, bitwise: edit the deck text before running")
+                   help="signal, walllimit, bitwise, restart: edit the deck text before "
+                        "running")
     p.add_argument("--signal", default="USR1", choices=["USR1", "USR2", "TERM"])
     p.add_argument("--to", default="mpirun", choices=["mpirun", "rank"],
                    help="signal: send to mpirun, or to the last rank's process only")

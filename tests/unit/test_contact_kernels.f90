@@ -4,7 +4,8 @@ program test_contact_kernels
   use core_kinds, only: rk
   use check, only: check_true, check_close, check_summary
   use contact_kernels, only: dlm_pair_force, dam_merged_normal_velocity, &
-      dam_put_back_velocity, KERNEL_COORDINATE, KERNEL_VELOCITY, KERNEL_COMBINED
+      dam_put_back_velocity, KERNEL_COORDINATE, KERNEL_VELOCITY, KERNEL_COMBINED, &
+      coulomb_limit, dlm_pair_friction, dam_friction_velocity
   implicit none
   real(rk) :: fh, mh, md, dt, w, vh, vd, pen, gap_end, fh_n, fd_n
   logical :: gated
@@ -100,6 +101,81 @@ program test_contact_kernels
     call check_close('DAM put-back: tangential component kept', &
         norm2(v - dot_product(v, n) * n), norm2([1.0_rk, 2.0_rk, 3.0_rk] - 2.2_rk * n), &
         1e-15_rk)
+  end block
+
+  ! Coulomb friction, DLM facet pair. Masses 2 and 6 (mu = 1.5), normal z,
+  ! the hitting side sliding at 0.3 along x (and closing at 0.1), no hydro
+  ! force, dt = 0.1. Stick: -mu vt / dt = -4.5 along x, within the limit
+  ! 0.5 x 100: after it both sides move at 0.3 - 0.1 x 4.5/2 = 0 + 0.1 x
+  ! 4.5/6 = 0.075 along x (sliding stopped, momentum kept).
+  block
+    real(rk) :: ft(3), n(3)
+    n = [0.0_rk, 0.0_rk, 1.0_rk]
+    ft = dlm_pair_friction(0.5_rk, 2.0_rk, 6.0_rk, [0.3_rk, 0.0_rk, -0.1_rk], &
+        [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], n, &
+        0.1_rk, -100.0_rk)
+    call check_close('DLM friction, stick: ft_x = -mu vt/dt = -4.5', ft(1), -4.5_rk, 1e-14_rk)
+    call check_true('DLM friction, stick: no normal or y component', ft(2) == 0.0_rk .and. &
+        ft(3) == 0.0_rk)
+    call check_close('DLM friction, stick: both sides at 0.075 after the step', &
+        0.3_rk + 0.1_rk * ft(1) / 2.0_rk, 0.0_rk - 0.1_rk * ft(1) / 6.0_rk, 1e-14_rk)
+    ! Slip: normal force -3, coefficient 0.5: limited to 1.5, against vt.
+    ft = dlm_pair_friction(0.5_rk, 2.0_rk, 6.0_rk, [0.3_rk, 0.0_rk, -0.1_rk], &
+        [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], n, &
+        0.1_rk, -3.0_rk)
+    call check_close('DLM friction, slip: ft_x = -0.5 x 3 = -1.5', ft(1), -1.5_rk, 1e-14_rk)
+    ! With hydro forces, sliding along x and y: vh = (0.3, 0.4, 0), its share
+    ! of the hydro force (0, -2, 5) (the z part is normal, ignored): free
+    ! relative tangential velocity at t + dt (0.3, 0.4 - 0.1 x 2/2) = (0.3,
+    ! 0.3); stick -1.5 (0.3, 0.3)/0.1 = (-4.5, -4.5), size 6.36 > limit 1 x
+    ! 4: slip, -4 (1, 1)/sqrt(2) = -2.828427 each.
+    ft = dlm_pair_friction(1.0_rk, 2.0_rk, 6.0_rk, [0.3_rk, 0.4_rk, 0.0_rk], &
+        [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, -2.0_rk, 5.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], n, &
+        0.1_rk, -4.0_rk)
+    call check_close('DLM friction, slip with hydro forces: ft_x = -2 sqrt(2)', ft(1), &
+        -2.0_rk * sqrt(2.0_rk), 1e-14_rk)
+    call check_close('DLM friction, slip with hydro forces: ft_y = -2 sqrt(2)', ft(2), &
+        -2.0_rk * sqrt(2.0_rk), 1e-14_rk)
+    call check_close('DLM friction, slip: |ft| = friction |fn| = 4', norm2(ft), 4.0_rk, 1e-14_rk)
+    ! Oblique normal (0.6, 0.8, 0): the force has no normal component.
+    n = [0.6_rk, 0.8_rk, 0.0_rk]
+    ft = dlm_pair_friction(1.0_rk, 2.0_rk, 6.0_rk, [1.0_rk, 2.0_rk, 3.0_rk], &
+        [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], n, &
+        0.1_rk, -1.0e6_rk)
+    call check_close('DLM friction, oblique normal: ft . n = 0', dot_product(ft, n), 0.0_rk, &
+        0.0_rk, 1e-12_rk)
+    ! vt = (1, 2, 3) - 2.2 n = (-0.32, 0.24, 3): stick -15 vt.
+    call check_close('DLM friction, oblique normal: ft_z = -15 x 3 = -45', ft(3), -45.0_rk, &
+        1e-14_rk)
+    ! No normal force, no friction.
+    ft = dlm_pair_friction(1.0_rk, 2.0_rk, 6.0_rk, [1.0_rk, 2.0_rk, 3.0_rk], &
+        [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], [0.0_rk, 0.0_rk, 0.0_rk], n, &
+        0.1_rk, 0.0_rk)
+    call check_true('DLM friction: no normal force, no friction', all(ft == 0.0_rk))
+
+    ! DAM: slave at (0.2, 0, -0.1) after the put-back, master interpolated
+    ! (0.05, 0, -0.1), normal z: relative tangential 0.15 along x. Normal
+    ! velocity change 0.4, coefficient 0.5: limit 0.2 > 0.15, stick (the
+    ! slave takes the master's tangential velocity); with change 0.1 (or
+    ! -0.1: the size counts), limit 0.05: slip by 0.05.
+    n = [0.0_rk, 0.0_rk, 1.0_rk]
+    ft = dam_friction_velocity(0.5_rk, [0.2_rk, 0.0_rk, -0.1_rk], [0.05_rk, 0.0_rk, -0.1_rk], n, &
+        0.4_rk)
+    call check_close('DAM friction, stick: dv_x = -0.15', ft(1), -0.15_rk, 1e-14_rk)
+    call check_true('DAM friction, stick: dv_y = dv_z = 0', ft(2) == 0.0_rk .and. &
+        ft(3) == 0.0_rk)
+    ft = dam_friction_velocity(0.5_rk, [0.2_rk, 0.0_rk, -0.1_rk], [0.05_rk, 0.0_rk, -0.1_rk], n, &
+        -0.1_rk)
+    call check_close('DAM friction, slip: dv_x = -0.5 x 0.1 = -0.05', ft(1), -0.05_rk, 1e-14_rk)
+
+    ! The law itself: within the limit unchanged, beyond it scaled to it.
+    call check_true('Coulomb limit: stick within the limit', &
+        all(coulomb_limit([3.0_rk, -4.0_rk, 0.0_rk], 5.0_rk) == [3.0_rk, -4.0_rk, 0.0_rk]))
+    ft = coulomb_limit([3.0_rk, -4.0_rk, 0.0_rk], 1.0_rk)
+    call check_close('Coulomb limit: slip, x = 0.6', ft(1), 0.6_rk, 1e-15_rk)
+    call check_close('Coulomb limit: slip, y = -0.8', ft(2), -0.8_rk, 1e-15_rk)
+    call check_true('Coulomb limit: zero stick, zero limit', &
+        all(coulomb_limit([0.0_rk, 0.0_rk, 0.0_rk], 0.0_rk) == 0.0_rk))
   end block
 
   call check_summary()
