@@ -30,7 +30,7 @@ for case in 1 2; do
   $rod, block = 'rod' /
 &mesh name = 'anvil', x = 0.0, 3.0, y = 0.0, 3.0, z = -2.0, 0.0, $an,
   ratio_x = 3.0, ratio_y = 3.0, ratio_z = 0.333333333333, block = 'anvil' /
-&material name = 'cu', eos = 'mie_gruneisen', library = 'cu_ofhc', strength = 'steinberg_guinan' /
+&material name = 'cu', eos = 'mie_gruneisen', library = 'cu_taylor', strength = 'steinberg_guinan' /
 $mat
 &block name = 'rod', material = 'cu' /
 &block name = 'anvil', material = 'ss' /
