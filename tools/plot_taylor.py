@@ -84,10 +84,11 @@ def main():
             ax.grid(alpha=0.3)
         if args.panels:
             whole.set_aspect("equal")
-            whole.set_xlim(0.0, 1.6)
+            right = 1.05 * max(x1[:, 0].max(), 0.5 * (args.foot_diameter or 0.0))
+            whole.set_xlim(0.0, max(1.6, right))
             whole.set_title(label, fontsize=9)
             foot.set_ylim(zmin - 0.05, zmin + FOOT)
-            foot.set_xlim(0.6, 1.3)
+            foot.set_xlim(0.6 * x0[:, 0].max(), max(1.3, right))
             foot.set_title("foot, z < %g cm" % FOOT, fontsize=9)
             foot.legend(fontsize=6, loc="upper left")
         else:
