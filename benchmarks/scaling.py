@@ -164,7 +164,9 @@ NOTES["command"] = r"""# search on the RCB parts, sparse exchanges, Release (cma
     tubes_dam_coarse tubes_dlm_fine
 # each run: cd <workdir>/<case>_np<N> && mpirun --oversubscribe -np <N> impact3d deck.nml"""
 NOTES["preamble"] = r"""Decks: `problems/taylor_contact/taylor_case2_steel_{dlm,dam}_{coarse,fine}.nml`
-(contact from the first cycle; coarse t_end = 40 us, fine t_end = 12 us) and
+(contact from the first cycle; coarse t_end = 40 us, fine t_end = 12 us;
+measured with the rods' copper of the time, Steinberg's annealed `cu_ofhc`, before the
+decks moved to the fitted `cu_taylor`) and
 `problems/tubes/tubes_same_{dlm,dam}.nml` (7680 zones; contact from 26 us, t_end = 60 us),
 each with `dump_interval = 1.0e6` (the summary's dump time is subtracted anyway).
 Fine tubes: the same deck 2x finer around the tube (`n_theta` 32 -> 64) and along

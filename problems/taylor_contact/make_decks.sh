@@ -4,7 +4,7 @@
 # directory; the decks are committed, this only documents how they were made.
 set -e
 for case in 1 2; do
-  if [ $case = 1 ]; then r=0.955; l=7.51; v=0.0083; else r=0.945; l=7.50; v=0.0205; fi
+  if [ $case = 1 ]; then r=0.955; l=7.51; v=0.0083; t=149; else r=0.945; l=7.50; v=0.0205; t=200; fi
   for anvil in steel stiff; do
     if [ $anvil = steel ]; then
       mat="&material name = 'ss', eos = 'mie_gruneisen', library = 'ss304', strength = 'steinberg_guinan' /"
@@ -24,13 +24,13 @@ for case in 1 2; do
 ! $what,
 ! quarter 3 x 3 x 2 cm (graded: smallest zones under the rod) resting on a
 ! rigid unilateral wall; the rod starts touching the anvil. Quarter symmetry,
-! $mesh rod mesh; final shape at 149 us after impact. Units cm, g, us, Mbar.
-&control title = 'Taylor case $case, $anvil anvil, $(echo $method | tr a-z A-Z), $mesh', t_end = 149.0 /
+! $mesh rod mesh; final shape at $t us after impact. Units cm, g, us, Mbar.
+&control title = 'Taylor case $case, $anvil anvil, $(echo $method | tr a-z A-Z), $mesh', t_end = $t.0 /
 &mesh name = 'rod', type = 'rod', radius = $r, length = $l, sector = 'quarter',
   $rod, block = 'rod' /
 &mesh name = 'anvil', x = 0.0, 3.0, y = 0.0, 3.0, z = -2.0, 0.0, $an,
   ratio_x = 3.0, ratio_y = 3.0, ratio_z = 0.333333333333, block = 'anvil' /
-&material name = 'cu', eos = 'mie_gruneisen', library = 'cu_ofhc', strength = 'steinberg_guinan' /
+&material name = 'cu', eos = 'mie_gruneisen', library = 'cu_taylor', strength = 'steinberg_guinan' /
 $mat
 &block name = 'rod', material = 'cu' /
 &block name = 'anvil', material = 'ss' /
@@ -42,7 +42,7 @@ $mat
 &boundary set = 'ymin', type = 'symmetry' /
 &boundary set = 'anvil_zmin', type = 'wall' /
 &contact name = 'foot', surface_a = 'rod_bottom', surface_b = 'anvil_zmax', method = '$method' /
-&output status_every = 5000, dump_interval = 149.0 /
+&output status_every = 5000, dump_interval = $t.0 /
 DECK
       done
     done

@@ -1017,7 +1017,7 @@ contains
       if (len_trim(library) > 0) then
         call material_library(to_lower(library), mat%mg, lib_shear, lib_yield, found)
         if (.not. found) call status%add(trim(where)//': library: '''//trim(library)// &
-            ''' is not a built-in material (valid: al6061, cu_ofhc, ss304, be_verney)')
+            ''' is not a built-in material (valid: al6061, cu_ofhc, cu_taylor, ss304, be_verney)')
       end if
       if (rho0 /= UNSET) mat%mg%rho0 = rho0
       if (c0 /= UNSET) mat%mg%c0 = c0

@@ -47,7 +47,7 @@ module material_flow_stress
   !> Steinberg's reference temperature (K) of G0 and Y0.
   real(rk), parameter, public :: SG_REFERENCE_TEMPERATURE = 300.0_rk
   !> Names accepted by sg_set.
-  character(len=*), parameter, public :: SG_SET_NAMES = 'al6061, cu_ofhc, ss304'
+  character(len=*), parameter, public :: SG_SET_NAMES = 'al6061, cu_ofhc, cu_taylor, ss304'
   !> Names accepted by jc_set.
   character(len=*), parameter, public :: JC_SET_NAMES = 'cu_ofhc'
 
@@ -146,8 +146,9 @@ contains
   end function sg_softening
 
   !> Named Steinberg-Guinan set: 'al6061' (Al 6061-T6), 'cu_ofhc' (OFHC copper),
-  !> 'ss304' (304 stainless steel). Any other name gives the unset default (g0 = 0);
-  !> valid names are SG_SET_NAMES.
+  !> 'cu_taylor' (the copper of the Taylor rods of Eakins & Thadhani), 'ss304' (304
+  !> stainless steel). Any other name gives the unset default (g0 = 0); valid names
+  !> are SG_SET_NAMES.
   !>
   !> G0, Y0, Ymax, beta, n, A, B, Tm0, rho0 and gamma0 are the table of docs/problems.md
   !> (Steinberg, UCRL-MA-106439). The Al and Cu strength rows, and a_melt = 1.5 for
@@ -158,6 +159,14 @@ contains
   !> not a tabulated value. cv: constant room-temperature specific heats, Al 0.90,
   !> Cu 0.385 (CRC Handbook values for the pure metals, 0.897 and 0.385 J/(g K)) and
   !> 304 SS 0.50 J/(g K) (typical data-sheet value), times 1e-5 Mbar cm^3/J.
+  !>
+  !> 'cu_taylor': fitted to the Taylor slow shot of Eakins & Thadhani (J. Appl. Phys.
+  !> 100, 073503 (2006): rod 1.91 cm x 7.51 cm at 0.0083 cm/us, final length 7.03 cm
+  !> and foot diameter 2.36 cm, as tabulated by Jia et al., J. Comput. Phys. 267
+  !> (2014)), this project: Y0 = 0.00377 Mbar and beta = 1.6 fitted (Newton on the
+  !> final length and foot diameter, rigid wall, coarse mesh of problems/taylor;
+  !> docs/verification-solids.md), every other parameter cu_ofhc's. Their rods behave
+  !> like cold-worked copper: a high initial yield and little further hardening.
   pure function sg_set(name) result(m)
     character(len=*), intent(in) :: name !< set name, one of SG_SET_NAMES
     type(steinberg_guinan_t) :: m
@@ -169,6 +178,10 @@ contains
           a_melt=1.5_rk, rho0=2.703_rk, cv=0.90e-5_rk)
     case ('cu_ofhc')
       m = steinberg_guinan_t(g0=0.477_rk, y0=0.0012_rk, ymax=0.0064_rk, beta=36.0_rk, &
+          n=0.45_rk, eps_i=0.0_rk, a=2.83_rk, b=3.77e-4_rk, tm0=1790.0_rk, gamma0=2.02_rk, &
+          a_melt=1.5_rk, rho0=8.93_rk, cv=0.385e-5_rk)
+    case ('cu_taylor')
+      m = steinberg_guinan_t(g0=0.477_rk, y0=0.00377_rk, ymax=0.0064_rk, beta=1.6_rk, &
           n=0.45_rk, eps_i=0.0_rk, a=2.83_rk, b=3.77e-4_rk, tm0=1790.0_rk, gamma0=2.02_rk, &
           a_melt=1.5_rk, rho0=8.93_rk, cv=0.385e-5_rk)
     case ('ss304')

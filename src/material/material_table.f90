@@ -150,9 +150,11 @@ contains
 
   !> Built-in Mie-Gruneisen data (cm, g, us, Mbar) from Steinberg, UCRL-MA-106439,
   !> as tabulated in docs/problems.md: 'al6061' (Al 6061-T6), 'cu_ofhc'
-  !> (OFHC copper), 'ss304' (304 stainless steel: recalled values, still to be
-  !> checked against a primary source), 'be_verney' (beryllium of the Verney
-  !> problem). found is false for any other name.
+  !> (OFHC copper), 'cu_taylor' (cu_ofhc's EOS and G0 with the yield stress Y0 fitted
+  !> to the Taylor slow shot of Eakins & Thadhani, this project; see
+  !> material_flow_stress, sg_set), 'ss304' (304 stainless steel: recalled values,
+  !> still to be checked against a primary source), 'be_verney' (beryllium of the
+  !> Verney problem). found is false for any other name.
   subroutine material_library(name, mg, shear, yield, found)
     character(len=*), intent(in) :: name
     type(mie_gruneisen_t), intent(inout) :: mg
@@ -169,6 +171,10 @@ contains
       mg = mie_gruneisen_t(rho0=8.93_rk, c0=0.394_rk, s1=1.489_rk, gamma0=2.02_rk, b=0.47_rk)
       shear = 0.477_rk
       yield = 0.0012_rk
+    case ('cu_taylor')
+      mg = mie_gruneisen_t(rho0=8.93_rk, c0=0.394_rk, s1=1.489_rk, gamma0=2.02_rk, b=0.47_rk)
+      shear = 0.477_rk
+      yield = 0.00377_rk
     case ('ss304')
       mg = mie_gruneisen_t(rho0=7.90_rk, c0=0.457_rk, s1=1.49_rk, gamma0=1.93_rk, b=0.5_rk)
       shear = 0.770_rk

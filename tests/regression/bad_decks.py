@@ -428,7 +428,7 @@ def build_cases():
     c.append(Case("material_sg_no_library",
                   mat(mg + ", strength = 'steinberg_guinan'"),
                   ["&material(1): %s: required for strength = 'steinberg_guinan' (or a "
-                   "library with Steinberg-Guinan data: al6061, cu_ofhc, ss304)" % k
+                   "library with Steinberg-Guinan data: al6061, cu_ofhc, cu_taylor, ss304)" % k
                    for k in ["shear_modulus", "yield_stress", "sg_ymax", "sg_beta", "sg_n",
                              "sg_a", "sg_b", "sg_tmelt0", "sg_a_melt", "cv"]],
                   min_errors=10))

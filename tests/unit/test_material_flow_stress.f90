@@ -5,7 +5,8 @@
 !> (b) the Ymax cap and eps_i; (c) zero strength at and above melt, Tm(rho0) = Tm0;
 !> (d) monotonic hardening, G falling with T and rising with p, no negative G;
 !> (e) Johnson-Cook T* clipping, rate factor 1 below eps_dot0, eps_p = 0;
-!> (f) temperature from energy and the unit conversions of the sets.
+!> (f) temperature from energy and the unit conversions of the sets;
+!> (g) 'cu_taylor' is 'cu_ofhc' but for the fitted Y0 and beta.
 program test_material_flow_stress
   use core_kinds, only: rk
   use material_flow_stress, only: steinberg_guinan_t, johnson_cook_t, sg_shear_modulus, &
@@ -196,6 +197,19 @@ program test_material_flow_stress
   call check_close('SG Cu G at 1700 K', g_hot, g_cold * (1.0_rk - sg%b * 1400.0_rk), tol)
   y_previous = sg_yield(sg, 0.0_rk, 0.0_rk, 1789.0_rk, 1.0_rk)
   call check_true('SG Cu Y > 0 at 1789 K', y_previous > 0.0_rk)
+
+  ! (g) The Taylor-fitted copper: Y0 = 0.00377 Mbar, beta = 1.6, the rest cu_ofhc's.
+  sg = sg_set('cu_taylor')
+  sg_shifted = sg_set('cu_ofhc')
+  call check_close('cu_taylor Y0', sg%y0, 0.00377_rk, tol)
+  call check_close('cu_taylor beta', sg%beta, 1.6_rk, tol)
+  sg_shifted%y0 = sg%y0
+  sg_shifted%beta = sg%beta
+  call check_true('cu_taylor: other parameters those of cu_ofhc', &
+      all([sg%g0, sg%ymax, sg%n, sg%eps_i, sg%a, sg%b, sg%tm0, sg%gamma0, sg%a_melt, sg%rho0, &
+      sg%cv] == [sg_shifted%g0, sg_shifted%ymax, sg_shifted%n, sg_shifted%eps_i, sg_shifted%a, &
+      sg_shifted%b, sg_shifted%tm0, sg_shifted%gamma0, sg_shifted%a_melt, sg_shifted%rho0, &
+      sg_shifted%cv]))
 
   call check_summary()
 end program test_material_flow_stress
