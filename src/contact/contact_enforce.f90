@@ -121,7 +121,7 @@ module contact_enforce
   real(rk), parameter :: AREA_TOLERANCE = 1.0e-8_rk
   !> Reals per DLM facet pair: shares wh, wd, penetration at the overlap
   !> centroid, overlap area, normal (3), excess over the recovery allowance,
-  !> penetration at the overlap's deepest vertex (the gate).
+  !> the gate's penetration (the centroid's; see dlm_geometry).
   integer, parameter :: FP_REALS = 9
 
 contains
@@ -659,7 +659,7 @@ contains
             if (pen - kept > 0.5_rk * p%size) cycle
             call add_facet_pair(p, nodeh, noded, wh, wd, pen - kept, s0, nrm, &
                 max(pen - kept - allowance, 0.0_rk), &
-                p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8), deepest - kept)
+                p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8), pen - kept)
           end do
         end do
       end do
@@ -668,11 +668,11 @@ contains
   contains
 
     !> Penetration at the deepest vertex of the overlap polygon (poly, in
-    !> the plane of origin, t1, t2): the contact gate. On a convex edge or
-    !> corner driven into a face, the facets beside it meet the face at an
-    !> angle, and their overlap reaches the face at the edge while its
-    !> centroid is still open: gating on the centroid let the edge sink a
-    !> fifth of a zone before any force.
+    !> the plane of origin, t1, t2). Tried as the contact gate (a convex
+    !> edge driven into a face is gated when it touches: cube edge-first
+    !> 3.3e-2 -> 2.5e-2 cm) and set aside: it made the crossed tubes
+    !> dissipate 1.6% of E0 instead of 0.005% (docs/contact.md, 9.3). Kept
+    !> for that study; the gate is the centroid's penetration.
     real(rk) function deepest_of(ph, nh, pd, nd) result(d)
       real(rk), intent(in) :: ph(3), nh(3), pd(3), nd(3) !< a point and normal of each facet
       real(rk) :: v(3)
@@ -754,7 +754,7 @@ contains
         if (sweep == 1) then
           fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
           fd_ = dot_product(ct%f(:, noded), nrm) * wd
-          ! The gate: the overlap's deepest vertex (dlm_geometry).
+          ! The gate: the penetration at the overlap centroid (dlm_geometry).
           call dlm_pair_force(p%form, mh, md, fh_, fd_, w, pen, p%fp_real(9, q), dt, &
               recovery_speed(q), fh, gated(q))
         else
