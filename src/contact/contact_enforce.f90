@@ -73,7 +73,6 @@ module contact_enforce
   use mesh_local, only: mesh_t
   use contact_geometry, only: segment_facets, quad_unit_normal, triangle_unit_normal, &
       triangle_overlap, triangle_overlap_2d, triangle_vector_area, SEGMENT_FACET_COUNT, &
-      OVERLAP_VERTICES, &
       FACET_CORNER, tangent_basis, segment_box, project_facets, facet_box, boxes_meet, covered, &
       plane_offset, bilinear_shape
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
@@ -574,8 +573,7 @@ contains
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, wh, wd, t1(3), t2(3), origin(3)
-    real(rk) :: allowance, kept, deepest, poly(2, OVERLAP_VERTICES)
-    integer :: npoly
+    real(rk) :: allowance, kept
     real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT), seg_a(4), seg_b(4)
     real(rk) :: a2(2, 3, SEGMENT_FACET_COUNT), b2(2, 3, SEGMENT_FACET_COUNT), centre2(2)
     integer :: m, sa, sb, i, j, nodeh, noded
@@ -627,9 +625,9 @@ contains
           do j = 1, SEGMENT_FACET_COUNT
             if (.not. boxes_meet(box_a(:, i), box_b(:, j))) cycle
             if (a_hits) then
-              call triangle_overlap_2d(a2(:, :, i), b2(:, :, j), s0, centre2, poly, npoly)
+              call triangle_overlap_2d(a2(:, :, i), b2(:, :, j), s0, centre2)
             else
-              call triangle_overlap_2d(b2(:, :, j), a2(:, :, i), s0, centre2, poly, npoly)
+              call triangle_overlap_2d(b2(:, :, j), a2(:, :, i), s0, centre2)
             end if
             if (.not. s0 > AREA_TOLERANCE * min(ga%area(i, sa), gb%area(j, sb))) cycle
             centroid = origin + centre2(1) * t1 + centre2(2) * t2
@@ -638,8 +636,6 @@ contains
               noded = p%b%segments(FACET_CORNER(j), sb)
               pen = plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), centroid, nrm) - &
                   plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), centroid, nrm)
-              deepest = deepest_of(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), &
-                  gb%facets(:, 1, j, sb), gb%normal(:, j, sb))
               wh = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(nodeh)
               wd = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(noded)
             else
@@ -647,8 +643,6 @@ contains
               noded = p%a%segments(FACET_CORNER(i), sa)
               pen = plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), centroid, nrm) - &
                   plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), centroid, nrm)
-              deepest = deepest_of(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), &
-                  ga%facets(:, 1, i, sa), ga%normal(:, i, sa))
               wh = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(nodeh)
               wd = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(noded)
             end if
@@ -665,25 +659,6 @@ contains
       end do
     end associate
 
-  contains
-
-    !> Penetration at the deepest vertex of the overlap polygon (poly, in
-    !> the plane of origin, t1, t2). Tried as the contact gate (a convex
-    !> edge driven into a face is gated when it touches: cube edge-first
-    !> 3.3e-2 -> 2.5e-2 cm) and set aside: it made the crossed tubes
-    !> dissipate 1.6% of E0 instead of 0.005% (docs/contact.md, 9.3). Kept
-    !> for that study; the gate is the centroid's penetration.
-    real(rk) function deepest_of(ph, nh, pd, nd) result(d)
-      real(rk), intent(in) :: ph(3), nh(3), pd(3), nd(3) !< a point and normal of each facet
-      real(rk) :: v(3)
-      integer :: iv
-      d = pen
-      do iv = 1, npoly
-        v = origin + poly(1, iv) * t1 + poly(2, iv) * t2
-        d = max(d, plane_offset(ph, nh, v, nrm) - plane_offset(pd, nd, v, nrm))
-      end do
-    end function deepest_of
-
   end subroutine dlm_geometry
 
   !> Append one facet pair to the interface's cache, growing it when full.
@@ -693,7 +668,7 @@ contains
     real(rk), intent(in) :: wh, wd, pen, s0, nrm(3)
     real(rk), intent(in) :: excess !< penetration beyond the recovery allowance (>= 0)
     integer(i8), intent(in) :: key !< global order: segment pair, facet of a, facet of b
-    real(rk), intent(in) :: gate !< penetration at the overlap's deepest vertex
+    real(rk), intent(in) :: gate !< penetration that gates the pair (the centroid's)
     integer, allocatable :: grown_node(:, :)
     integer(i8), allocatable :: grown_key(:)
     real(rk), allocatable :: grown_real(:, :)
