@@ -6,12 +6,14 @@
 module contact_state
   use core_kinds, only: rk, ik, i8
   use mesh_global, only: NAME_LEN
-  use contact_surface, only: contact_surface_t
+  use contact_surface, only: contact_surface_t, nodal_areas
+  use contact_geometry, only: segment_facets, triangle_unit_normal, triangle_vector_area, &
+      quad_unit_normal, SEGMENT_FACET_COUNT
   use contact_records, only: records_t
   use contact_search, only: primary_pair_t
   implicit none
   private
-  public :: capture_of, key_node, geometry_free
+  public :: capture_of, key_node, geometry_free, geometry_update
 
   integer, parameter, public :: METHOD_DAM = 1, METHOD_DLM = 2
   integer, parameter, public :: FORM_COORDINATE = 1, FORM_VELOCITY = 2, FORM_COMBINED = 3
@@ -34,6 +36,27 @@ module contact_state
       'audit_pen_max_a', 'audit_pen_max_b', 'audit_count_a', 'audit_count_b', 'unheld']
   !> Positions of the monitor's columns in diag.
   integer, parameter, public :: DIAG_FORCE = 9, DIAG_WORK = 12, DIAG_AUDIT = 13
+
+  !> Facets facing each other: n_a . n_b below this (DAM facet pairs, DLM
+  !> segment pairs).
+  real(rk), parameter, public :: FACING = -0.2_rk
+  !> Overlaps smaller than this fraction of the smaller facet's area are
+  !> ignored: slivers between facets of neighbouring nodes that coincide in
+  !> one projection but not in the slightly tilted common plane of another
+  !> segment pair (relative size tilt x penetration / zone, ~1e-12 on the
+  !> mirror test). They carry less than this share of a node's force.
+  real(rk), parameter, public :: AREA_TOLERANCE = 1.0e-8_rk
+
+  !> One RCB part's sums of a stage for an interface (reduced over the
+  !> parts into the diagnostics).
+  type, public :: step_sums_t
+    real(rk) :: active = 0.0_rk !< enforced pairs: DLM facet pairs, DAM slave nodes
+    real(rk) :: force = 0.0_rk !< total normal force
+    real(rk) :: pen_max = 0.0_rk !< largest penetration of an enforced pair at t^n
+    real(rk) :: pen_sq = 0.0_rk !< sum of squared penetrations (DLM: area-weighted)
+    real(rk) :: weight = 0.0_rk !< their weight: DLM overlap area, DAM penetrating slaves
+    real(rk) :: dmom(3) = 0.0_rk !< momentum the contact forces added
+  end type step_sums_t
 
   !> Length of a contact surface's list of face-set names.
   integer, parameter, public :: SURFACE_LEN = 256
@@ -98,7 +121,11 @@ module contact_state
     integer :: nfp = 0 !< DLM facet pairs of the cycle
     integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
     integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
-    real(rk), allocatable :: fp_real(:, :) !< (9, nfp) shares wh, wd, pen, s0, normal, excess, gate
+    real(rk), allocatable :: fp_share(:, :) !< (2, nfp) shares of the hitting and target node
+    real(rk), allocatable :: fp_normal(:, :) !< (3, nfp) common normal (from the hitting side)
+    real(rk), allocatable :: fp_pen(:) !< (nfp) penetration at the overlap centroid (the gate)
+    real(rk), allocatable :: fp_area(:) !< (nfp) overlap area
+    real(rk), allocatable :: fp_excess(:) !< (nfp) penetration beyond the recovery allowance
     type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
     type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
     real(rk), allocatable :: rbf(:, :) !< DAM: (4, nprimary) put-back weights
@@ -106,7 +133,7 @@ module contact_state
     integer, allocatable :: ex_master(:) !< DAM: master node of an exchange entry
     real(rk), allocatable :: ex_real(:, :) !< DAM: (3, nex) shares wm, ws and overlap s0
     logical, allocatable :: enforced(:) !< DAM: (ncn) local slave enforced this stage
-    real(rk) :: partial(CONTACT_DIAG_COUNT) = 0.0_rk !< this part's diagnostic sums
+    type(step_sums_t) :: sums !< this part's sums of the stage
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     ! Audit and per-interface output (contact_monitor).
     real(rk) :: reach = 0.0_rk !< audit reach: twice the larger median segment size
@@ -192,6 +219,28 @@ module contact_state
 
 
 contains
+
+  !> A surface's facets, facet normals and areas, segment normals and nodal
+  !> areas at x (once per cycle; every segment pair then reads them).
+  subroutine geometry_update(x, surf, g)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    type(surface_geometry_t), intent(inout) :: g
+    integer :: s, i
+    if (.not. allocated(g%facets)) allocate(g%facets(3, 3, SEGMENT_FACET_COUNT, surf%nseg), &
+        g%normal(3, SEGMENT_FACET_COUNT, surf%nseg), g%area(SEGMENT_FACET_COUNT, surf%nseg), &
+        g%quad_normal(3, surf%nseg), g%nodal_area(size(x, 2)))
+    do s = 1, surf%nseg
+      call segment_facets(x(:, surf%segments(:, s)), g%facets(:, :, :, s))
+      do i = 1, SEGMENT_FACET_COUNT
+        g%normal(:, i, s) = triangle_unit_normal(g%facets(:, :, i, s))
+        g%area(i, s) = norm2(triangle_vector_area(g%facets(:, :, i, s)))
+      end do
+      g%quad_normal(:, s) = quad_unit_normal(x(:, surf%segments(:, s)))
+    end do
+    g%nodal_area = 0.0_rk
+    call nodal_areas(x, surf, g%nodal_area)
+  end subroutine geometry_update
 
   !> Capture tolerance: the deck's, or twice the closing distance of one step.
   pure real(rk) function capture_of(p, speed, dt) result(capture)

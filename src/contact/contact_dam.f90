@@ -1,0 +1,378 @@
+!> DAM, the discrete accurate matching method (master-slave) of Jia, Gong,
+!> Zhang & Liu (J. Comput. Phys. 267 (2014) 247-285), as described in
+!> docs/contact.md, section 6. On each RCB part: the facet overlaps of each
+!> slave node with the master facets around its primary segment
+!> (dam_geometry), which slaves are enforced and the exchange of mass, force
+!> and momentum over the overlaps (dam_exchange), and the put-back-on of the
+!> slaves' normal velocity (dam_put_back). At the owners of the nodes: the
+!> matched normal velocity of touched master nodes (match_masters) and the
+!> final velocities as contact forces (dam_forces). contact_enforce runs the
+!> rounds and moves the records between parts and owners.
+module contact_dam
+  use core_kinds, only: rk, ik, i8
+  use contact_geometry, only: tangent_basis, segment_box, facet_box, boxes_meet, &
+      triangle_overlap, covered, bilinear_shape, FACET_CORNER, SEGMENT_FACET_COUNT
+  use contact_surface, only: contact_surface_t, surface_node_index, master_neighbourhood
+  use contact_records, only: records_t, add_record
+  use contact_search, only: primary_pairs
+  use contact_rbf, only: rbf_weights
+  use contact_state, only: METHOD_DAM, FACING, AREA_TOLERANCE, surface_geometry_t, &
+      interface_t, contact_t, capture_of, geometry_update
+  use contact_kernels, only: dam_merged_normal_velocity, dam_put_back_velocity, &
+      dam_friction_velocity
+  implicit none
+  private
+  public :: dam_exchange, dam_put_back, match_masters, dam_forces
+
+contains
+
+  !> DAM geometry at x^n (once per cycle, in the predictor; both stages use
+  !> x^n): the primary pairs within the capture distance of a full step, the
+  !> facet overlaps of each slave node's facets with the facets of its primary
+  !> segment's neighbourhood (projected on the slave facet's plane), and the
+  !> RBF put-back weights.
+  subroutine dam_geometry(ct, p, dt)
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    real(rk), intent(in) :: dt !< the full step
+    real(rk) :: nf(3), s0, centroid(3), t1(3), t2(3), box_s(4), box_m(4), seg_m(4), pos(3, 4)
+    real(rk) :: capture
+    integer :: q, n, k, e, ss, sm, i, j, c, ncand, nex
+    integer :: candidates(64)
+    logical :: ok
+
+    call geometry_update(ct%x, p%a, p%ga)
+    call geometry_update(ct%x, p%b, p%gb)
+    capture = capture_of(p, 2.0_rk * ct%speed, dt)
+    call primary_pairs(ct%x, p%b, p%test_pairs, capture, 0.5_rk * p%size, p%primary, &
+        p%offset(ct%all_of))
+    if (allocated(p%rbf)) deallocate(p%rbf, p%ex_start)
+    allocate(p%rbf(4, size(p%primary)), p%ex_start(size(p%primary) + 1))
+    if (.not. allocated(p%ex_master)) allocate(p%ex_master(64), p%ex_real(3, 64))
+    nex = 0
+    associate(gs => p%ga, gm => p%gb)
+      do q = 1, size(p%primary)
+        p%ex_start(q) = nex + 1
+        n = p%primary(q)%node
+        do k = 1, 4
+          pos(:, k) = ct%x(:, p%b%segments(k, p%primary(q)%segment))
+        end do
+        if (p%slave_normal) call use_slave_normal(p%a, gs, n, p%primary(q)%normal)
+        call rbf_weights(pos, ct%x(:, n), p%primary(q)%normal, p%rbf(:, q), ok)
+        if (.not. ok) call bilinear_shape(p%primary(q)%xi, p%primary(q)%eta, p%rbf(:, q))
+        call master_neighbourhood(p%b, p%primary(q)%segment, candidates, ncand)
+        k = surface_node_index(p%a, int(n, ik))
+        do e = p%a%node_start(k), p%a%node_start(k + 1) - 1
+          ss = p%a%node_segments(e)
+          c = findloc(p%a%segments(:, ss), n, dim=1)
+          do i = 2 * c - 1, 2 * c
+            nf = gs%normal(:, i, ss)
+            call tangent_basis(nf, t1, t2)
+            call facet_box(gs%facets(:, :, i, ss), t1, t2, box_s)
+            do j = 1, ncand
+              sm = candidates(j)
+              call segment_box(ct%x, p%b%segments(:, sm), [0.0_rk, 0.0_rk, 0.0_rk], t1, t2, &
+                  seg_m)
+              if (.not. boxes_meet(box_s, seg_m)) cycle
+              do k = 1, SEGMENT_FACET_COUNT
+                if (.not. dot_product(nf, gm%normal(:, k, sm)) < FACING) cycle
+                call facet_box(gm%facets(:, :, k, sm), t1, t2, box_m)
+                if (.not. boxes_meet(box_s, box_m)) cycle
+                call triangle_overlap(gs%facets(:, :, i, ss), gm%facets(:, :, k, sm), nf, s0, &
+                    centroid)
+                if (.not. s0 > AREA_TOLERANCE * min(gs%area(i, ss), gm%area(k, sm))) cycle
+                call add_exchange(p%b%segments(FACET_CORNER(k), sm), &
+                    covered(gm%normal(:, k, sm), s0, nf) / gm%nodal_area( &
+                    p%b%segments(FACET_CORNER(k), sm)), s0 / gs%nodal_area(n), s0)
+              end do
+            end do
+          end do
+        end do
+      end do
+    end associate
+    p%ex_start(size(p%primary) + 1) = nex + 1
+
+  contains
+
+    subroutine add_exchange(m, wm, ws, s0)
+      integer(ik), intent(in) :: m
+      real(rk), intent(in) :: wm, ws, s0
+      integer, allocatable :: grown_master(:)
+      real(rk), allocatable :: grown_real(:, :)
+      if (nex == size(p%ex_master)) then
+        allocate(grown_master(2 * nex), grown_real(3, 2 * nex))
+        grown_master(:nex) = p%ex_master(:nex)
+        grown_real(:, :nex) = p%ex_real(:, :nex)
+        call move_alloc(grown_master, p%ex_master)
+        call move_alloc(grown_real, p%ex_real)
+      end if
+      nex = nex + 1
+      p%ex_master(nex) = m
+      p%ex_real(:, nex) = [wm, ws, s0]
+    end subroutine add_exchange
+
+  end subroutine dam_geometry
+
+  !> DAM with normal = 'slave': the contact normal of slave node n becomes the
+  !> reverse of its own area-weighted normal (its facets on the slave
+  !> surface), kept only where it faces the master (normal . ns < 0). The
+  !> slave's hydro force is the pressure on those facets, so the constraint
+  !> along that normal leaves no tangential part of it to drive the node
+  !> along the interface; with the master facet's normal, on non-matching
+  !> curved meshes the mismatch angle (about h/R) leaves a tangential
+  !> pressure force that slides slave nodes and shears their zones.
+  pure subroutine use_slave_normal(slave, gs, n, normal)
+    type(contact_surface_t), intent(in) :: slave
+    type(surface_geometry_t), intent(in) :: gs
+    integer, intent(in) :: n !< the slave node (local contact index)
+    real(rk), intent(inout) :: normal(3) !< the master's normal at the projection
+    real(rk) :: ns(3)
+    integer :: k, e, s, c, i
+    ns = 0.0_rk
+    k = surface_node_index(slave, int(n, ik))
+    do e = slave%node_start(k), slave%node_start(k + 1) - 1
+      s = slave%node_segments(e)
+      c = findloc(slave%segments(:, s), n, dim=1)
+      do i = 2 * c - 1, 2 * c
+        ns = ns + gs%area(i, s) * gs%normal(:, i, s)
+      end do
+    end do
+    if (norm2(ns) > 0.0_rk .and. dot_product(ns, normal) < 0.0_rk) normal = -ns / norm2(ns)
+  end subroutine use_slave_normal
+
+  !> DAM at the parts, first round: which slave nodes are enforced, and the
+  !> exchange of mass, force and momentum over the facet overlaps of each
+  !> enforced slave with the master facets (docs/contact.md, 6), as records
+  !> for the owners of both nodes, keyed (slave, entry, side) in the order of
+  !> a one-rank run.
+  subroutine dam_exchange(ct, p, k, dt, final, out)
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    integer, intent(in) :: k !< the interface's number
+    real(rk), intent(in) :: dt !< the stage's step
+    logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
+    type(records_t), intent(inout) :: out !< nv = 10: mass, force, momentum, master normal
+    real(rk) :: nrm(3), shape(4), am, vm, as, vs, gfree, wm, ws, s0
+    real(rk) :: buf(10)
+    integer(i8) :: base
+    integer :: q, n, c, e, m
+    logical :: also_master
+
+    ! The predictor's step is half the cycle's.
+    if (.not. final .or. .not. allocated(p%primary)) call dam_geometry(ct, p, &
+        merge(dt, 2.0_rk * dt, final))
+
+    ! Which slave nodes are enforced: the free motion would close the gap.
+    p%enforced = .false.
+    do q = 1, size(p%primary)
+      n = p%primary(q)%node
+      nrm = p%primary(q)%normal
+      call bilinear_shape(p%primary(q)%xi, p%primary(q)%eta, shape)
+      am = 0.0_rk
+      vm = 0.0_rk
+      do c = 1, 4
+        m = p%b%segments(c, p%primary(q)%segment)
+        am = am + shape(c) * dot_product(ct%f(:, m), nrm) / ct%mass(m)
+        vm = vm + shape(c) * dot_product(ct%v(:, m), nrm)
+      end do
+      as = dot_product(ct%f(:, n), nrm) / ct%mass(n)
+      vs = dot_product(ct%v(:, n), nrm)
+      gfree = p%primary(q)%gap + dt * (vs - vm) + 0.5_rk * dt * dt * (as - am)
+      ! Release (3.7): the free motion at t^n+1 separates the slave from the
+      ! master (tension); a residual penetration does not hold it. This is
+      ! the rule of the unilateral rigid wall, so the mirror test holds.
+      if (vs - vm + dt * (as - am) > 0.0_rk) cycle
+      if (gfree < 0.0_rk) p%enforced(n) = .true.
+    end do
+
+    ! Exchange over the cached facet overlaps.
+    do q = 1, size(p%primary)
+      n = p%primary(q)%node
+      if (.not. p%enforced(n)) cycle
+      base = int(ct%all_of(n), i8) * 65536_i8
+      ! The slave's own sums matter only where it is a master node too.
+      also_master = surface_node_index(p%b, int(n, ik)) > 0
+      do e = p%ex_start(q), p%ex_start(q + 1) - 1
+        m = p%ex_master(e)
+        wm = p%ex_real(1, e)
+        ws = p%ex_real(2, e)
+        s0 = p%ex_real(3, e)
+        ! (Values assembled in a fixed-size buffer: an array constructor of
+        ! sections is built on the heap.)
+        if (also_master) then
+          buf(1) = ct%mass(m) * wm
+          buf(2:4) = ct%f(:, m) * wm
+          buf(5:7) = ct%mass(m) * ct%v(:, m) * wm
+          buf(8:10) = 0.0_rk
+          call add_record(out, ct%all_of(n), k, base + int(2 * (e - p%ex_start(q)), i8), buf)
+        end if
+        buf(1) = ct%mass(n) * ws
+        buf(2:4) = ct%f(:, n) * ws
+        buf(5:7) = ct%mass(n) * ct%v(:, n) * ws
+        buf(8:10) = s0 * p%primary(q)%normal
+        call add_record(out, ct%all_of(m), k, base + int(2 * (e - p%ex_start(q)) + 1, i8), buf)
+      end do
+    end do
+  end subroutine dam_exchange
+
+  !> DAM at the parts, second round: the put-back-on of each enforced slave's
+  !> normal velocity by RBF interpolation of the matched velocities vm of its
+  !> master segment's nodes (docs/contact.md, 6); tangential motion is free
+  !> (frictionless unless friction is given). vm are the velocities after the
+  !> master matching and before any put-back (in self-contact a master node
+  !> may be a slave too).
+  !> With Coulomb friction (deck friction > 0; docs/contact.md, 6.1) the
+  !> slave's tangential velocity relative to the master's interpolated
+  !> velocity (the same RBF weights) is reduced by at most friction times
+  !> the put-back's normal velocity change, and each node of the master
+  !> segment gets the opposite momentum times its weight (the weights sum
+  !> to 1): records keyed after every put-back record (key > nall), which
+  !> dam_forces adds to the master's velocity as momentum.
+  subroutine dam_put_back(ct, p, k, dt, vm, out)
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    integer, intent(in) :: k !< the interface's number
+    real(rk), intent(in) :: dt !< the stage's step
+    real(rk), intent(in) :: vm(:, :) !< (3, ncn) matched velocities of the local set
+    type(records_t), intent(inout) :: out !< nv = 3: the slave's final velocity
+    real(rk) :: nrm(3), target, pen, pen_max, pen_sq, sum_force, vnew(3), vmi(3), dv(3)
+    integer :: q, n, c, active, npen
+
+    active = 0
+    npen = 0
+    pen_max = 0.0_rk
+    pen_sq = 0.0_rk
+    sum_force = 0.0_rk
+    do q = 1, size(p%primary)
+      n = p%primary(q)%node
+      if (.not. p%enforced(n)) cycle
+      active = active + 1
+      nrm = p%primary(q)%normal
+      target = 0.0_rk
+      do c = 1, 4
+        target = target + p%rbf(c, q) * dot_product(vm(:, p%b%segments(c, &
+            p%primary(q)%segment)), nrm)
+      end do
+      vnew = dam_put_back_velocity(vm(:, n), nrm, target)
+      if (p%spec%friction > 0.0_rk) then
+        vmi = 0.0_rk
+        do c = 1, 4
+          vmi = vmi + p%rbf(c, q) * vm(:, p%b%segments(c, p%primary(q)%segment))
+        end do
+        dv = dam_friction_velocity(p%spec%friction, vnew, vmi, nrm, &
+            target - dot_product(vm(:, n), nrm))
+        vnew = vnew + dv
+        do c = 1, 4
+          call add_record(out, ct%all_of(p%b%segments(c, p%primary(q)%segment)), k, &
+              int(ct%nall, i8) + 4_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), &
+              -(ct%mass(n) * p%rbf(c, q)) * dv)
+        end do
+      end if
+      call add_record(out, ct%all_of(n), k, int(ct%all_of(n), i8), vnew)
+      sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &
+          ct%f(:, n), nrm), 0.0_rk)
+      pen = -p%primary(q)%gap
+      if (pen > 0.0_rk) then
+        pen_max = max(pen_max, pen)
+        pen_sq = pen_sq + pen * pen
+        npen = npen + 1
+      end if
+    end do
+    p%sums%active = real(active, rk)
+    p%sums%force = sum_force
+    p%sums%pen_max = pen_max
+    p%sums%pen_sq = pen_sq
+    p%sums%weight = real(npen, rk)
+  end subroutine dam_put_back
+
+  !> DAM at the owners, first round: the exchanged mass, force and momentum
+  !> of the owned nodes summed in key order, then the velocities: free, and
+  !> for master nodes the matched normal component (docs/contact.md, 6).
+  subroutine match_masters(ct, r, v_old, force, dt, vmatch, touched)
+    type(contact_t), intent(in) :: ct
+    type(records_t), intent(in) :: r
+    real(rk), intent(in) :: v_old(:, :), force(:, :), dt
+    real(rk), intent(out) :: vmatch(:, :, :)
+    logical, intent(out) :: touched(:, :)
+    real(rk), allocatable :: mbar(:, :), fbar(:, :, :), pbar(:, :, :), nmaster(:, :, :)
+    real(rk) :: unit(3), vn, mass
+    integer :: i, k, j, l
+    allocate(mbar(ct%nown, ct%npair), fbar(3, ct%nown, ct%npair), pbar(3, ct%nown, ct%npair), &
+        nmaster(3, ct%nown, ct%npair))
+    touched = .false.
+    do i = 1, ct%nown
+      l = ct%own_local(i)
+      mass = ct%all_mass(ct%own_contact(i))
+      mbar(i, :) = mass
+      do k = 1, ct%npair
+        fbar(:, i, k) = force(:, l)
+        pbar(:, i, k) = mass * v_old(:, l)
+      end do
+    end do
+    nmaster = 0.0_rk
+    do j = 1, r%n
+      i = int(r%id(1, j))
+      k = int(r%id(2, j))
+      mbar(i, k) = mbar(i, k) + r%val(1, j)
+      fbar(:, i, k) = fbar(:, i, k) + r%val(2:4, j)
+      pbar(:, i, k) = pbar(:, i, k) + r%val(5:7, j)
+      if (mod(r%id(3, j), 2_i8) == 1_i8) then
+        nmaster(:, i, k) = nmaster(:, i, k) + r%val(8:10, j)
+        touched(i, k) = .true.
+      end if
+    end do
+    do i = 1, ct%nown
+      l = ct%own_local(i)
+      mass = ct%all_mass(ct%own_contact(i))
+      do k = 1, ct%npair
+        vmatch(:, i, k) = v_old(:, l) + dt * force(:, l) / mass
+        if (.not. touched(i, k)) cycle
+        if (.not. norm2(nmaster(:, i, k)) > 0.0_rk) cycle
+        unit = nmaster(:, i, k) / norm2(nmaster(:, i, k))
+        vn = dam_merged_normal_velocity(mbar(i, k), pbar(:, i, k), fbar(:, i, k), unit, dt)
+        vmatch(:, i, k) = vmatch(:, i, k) + (vn - dot_product(vmatch(:, i, k), unit)) * unit
+      end do
+    end do
+  end subroutine match_masters
+
+  !> DAM at the owners, second round: the final velocities (the put-back-on
+  !> of enforced slaves, the matched velocity of touched masters) as forces.
+  subroutine dam_forces(ct, r, v_old, force, dt, vmatch, touched, fck, has)
+    type(contact_t), intent(inout) :: ct
+    type(records_t), intent(in) :: r
+    real(rk), intent(in) :: v_old(:, :), force(:, :), dt
+    real(rk), intent(in) :: vmatch(:, :, :)
+    logical, intent(in) :: touched(:, :)
+    real(rk), intent(inout) :: fck(:, :, :)
+    logical, intent(inout) :: has(:, :)
+    real(rk), allocatable :: vfinal(:, :, :)
+    real(rk) :: mass
+    integer :: i, k, j, l
+    allocate(vfinal, source=vmatch)
+    do j = 1, r%n
+      i = int(r%id(1, j))
+      k = int(r%id(2, j))
+      if (r%id(3, j) > int(ct%nall, i8)) then
+        ! Friction reaction on a master node (dam_put_back): a momentum,
+        ! after the node's own put-back if it is a slave too (key order).
+        vfinal(:, i, k) = vfinal(:, i, k) + r%val(:, j) / ct%all_mass(ct%own_contact(i))
+      else
+        vfinal(:, i, k) = r%val(:, j)
+      end if
+      has(i, k) = .true.
+    end do
+    do k = 1, ct%npair
+      if (ct%pairs(k)%method /= METHOD_DAM) cycle
+      do i = 1, ct%nown
+        if (.not. (has(i, k) .or. touched(i, k))) cycle
+        has(i, k) = .true.
+        l = ct%own_local(i)
+        mass = ct%all_mass(ct%own_contact(i))
+        fck(:, i, k) = mass * (vfinal(:, i, k) - v_old(:, l)) / dt - force(:, l)
+        ct%pairs(k)%sums%dmom = ct%pairs(k)%sums%dmom + mass * (vfinal(:, i, k) - &
+            v_old(:, l)) - dt * force(:, l)
+      end do
+    end do
+  end subroutine dam_forces
+
+end module contact_dam
