@@ -337,8 +337,9 @@ contains
 
   !> DAM at the owners, second round: the final velocities (the put-back-on
   !> of enforced slaves, the matched velocity of touched masters) as forces.
-  subroutine dam_forces(ct, r, v_old, force, dt, vmatch, touched, fck, has)
+  subroutine dam_forces(ct, first, last, r, v_old, force, dt, vmatch, touched, fck, has)
     type(contact_t), intent(inout) :: ct
+    integer, intent(in) :: first, last !< the interfaces of the round
     type(records_t), intent(in) :: r
     real(rk), intent(in) :: v_old(:, :), force(:, :), dt
     real(rk), intent(in) :: vmatch(:, :, :)
@@ -361,7 +362,7 @@ contains
       end if
       has(i, k) = .true.
     end do
-    do k = 1, ct%npair
+    do k = first, last
       if (ct%pairs(k)%method /= METHOD_DAM) cycle
       do i = 1, ct%nown
         if (.not. (has(i, k) .or. touched(i, k))) cycle

@@ -61,7 +61,7 @@ module contact_enforce
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
   implicit none
   private
-  public :: contact_setup, contact_apply, contact_work_update, contact_diagnostics
+  public :: contact_setup, contact_apply, contact_work_update
   public :: contact_report
   ! The state the application and the deck reader see.
   public :: CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, contact_t
@@ -82,14 +82,17 @@ contains
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
     integer(i8), allocatable :: all(:)
     real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
-    integer :: k, n, i, count_all
+    integer :: k, n, i, m, count_all
     character(len=16) :: where
     character(len=SURFACE_LEN) :: master_set, slave_set
 
-    ct%npair = size(specs)
+    ct%ndeck = size(specs)
+    ct%npair = ct%ndeck + count(specs%symmetric .and. specs%method == 'dam' .and. &
+        specs%surface_a /= specs%surface_b)
     allocate(ct%pairs(ct%npair), raw_a(ct%npair), raw_b(ct%npair))
     if (ct%npair == 0) return
-    do k = 1, ct%npair
+    m = ct%ndeck
+    do k = 1, ct%ndeck
       write(where, '(a,i0,a)') '&contact(', k, ')'
       associate(p => ct%pairs(k))
         p%spec = specs(k)
@@ -120,6 +123,21 @@ contains
         end if
         call surface_build(global, set_names_of(slave_set), raw_a(k), status)
         call surface_build(global, set_names_of(master_set), raw_b(k), status)
+        if (p%method == METHOD_DAM .and. specs(k)%symmetric .and. .not. p%self) then
+          ! The reverse pass: the same interface with the sides swapped.
+          m = m + 1
+          p%mirror = m
+          ct%pairs(m) = p
+          ct%pairs(m)%mirror = 0
+          ct%pairs(m)%mirror_of = k
+          ! Its contact normal is its slave's own (the deck master's): the
+          ! first pass's master edges and corners lead here, and the normal
+          ! at an edge's projection tilts toward the edge and would move
+          ! the slave along the surface (docs/contact.md, 6.2).
+          ct%pairs(m)%slave_normal = .true.
+          raw_a(m) = raw_b(k)
+          raw_b(m) = raw_a(k)
+        end if
       end associate
     end do
     if (.not. status%ok()) return
@@ -196,7 +214,7 @@ contains
         allocate(p%offset(ct%nall), p%own_in_a(ct%nown), p%fc_own(3, ct%nown))
         p%offset = 0.0_rk
         p%fc_own = 0.0_rk
-        if (present(offsets)) then
+        if (present(offsets) .and. p%mirror_of == 0) then
           do i = 1, p%all_a%nnode
             p%offset(p%all_a%nodes(i)) = max(p%offset(p%all_a%nodes(i)), offsets(k)%a(i))
           end do
@@ -204,6 +222,9 @@ contains
             p%offset(p%all_b%nodes(i)) = max(p%offset(p%all_b%nodes(i)), offsets(k)%b(i))
           end do
         end if
+        ! A reverse pass keeps the initial penetration of its deck interface
+        ! (offsets are per contact node, so the same array).
+        if (p%mirror_of > 0) p%offset = ct%pairs(p%mirror_of)%offset
         do i = 1, ct%nown
           p%own_in_a(i) = surface_node_index(p%all_a, ct%own_contact(i)) > 0
         end do
@@ -268,13 +289,12 @@ contains
         real(rk) :: t
       end function wall_clock
     end interface
-    type(records_t) :: dlm_out, dam_out, putback
     real(rk), allocatable :: fck(:, :, :), vmatch(:, :, :), vm_local(:, :, :)
     logical, allocatable :: has(:, :), touched(:, :)
     real(rk) :: t0, speed
     type(selection_t), allocatable :: sel(:)
     integer :: i, k
-    logical :: any_dam, rebuilt
+    logical :: rebuilt
 
     if (ct%npair == 0) return
     t0 = wall_clock()
@@ -295,50 +315,20 @@ contains
       call lap(ct%search_seconds)
     end if
 
-    ! The parts: DLM pair forces, DAM exchange over the overlaps.
-    call take(ct%kept(1), dlm_out, 3)
-    call take(ct%kept(2), dam_out, 10)
-    call take(ct%kept(3), putback, 3)
-    any_dam = .false.
-    do k = 1, ct%npair
-      ct%pairs(k)%sums = step_sums_t()
-      select case (ct%pairs(k)%method)
-      case (METHOD_DLM)
-        call dlm_step(ct, ct%pairs(k), k, dt, final, dlm_out)
-      case (METHOD_DAM)
-        any_dam = .true.
-        call dam_exchange(ct, ct%pairs(k), k, dt, final, dam_out)
-      end select
-    end do
-    call lap(ct%enforce_seconds)
-
-    ! The owners: sums in key order.
     allocate(fck(3, ct%nown, ct%npair), has(ct%nown, ct%npair))
     fck = 0.0_rk
     has = .false.
-    call send_records(dlm_out, ct%all_owner, ct%own_of, ct%nown)
-    call sum_records(dlm_out, fck, has)
-    if (any_dam) then
-      call send_records(dam_out, ct%all_owner, ct%own_of, ct%nown)
-      allocate(vmatch(3, ct%nown, ct%npair), touched(ct%nown, ct%npair))
-      call match_masters(ct, dam_out, v_old, force, dt, vmatch, touched)
-      call scatter_nodes(ct, vmatch, vm_local)
-      call lap(ct%migrate_seconds)
-      do k = 1, ct%npair
-        if (ct%pairs(k)%method == METHOD_DAM) call dam_put_back(ct, ct%pairs(k), k, dt, &
-            vm_local(:, :, k), putback)
-      end do
-      call lap(ct%enforce_seconds)
-      call send_records(putback, ct%all_owner, ct%own_of, ct%nown)
-      call dam_forces(ct, putback, v_old, force, dt, vmatch, touched, fck, has)
-    end if
     ct%fc = 0.0_rk
-    do i = 1, ct%nown
-      do k = 1, ct%npair
-        if (has(i, k)) ct%fc(:, i) = ct%fc(:, i) + fck(:, i, k)
-      end do
-      force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + ct%fc(:, i)
-    end do
+    call stage_round(1, ct%ndeck)
+    if (ct%npair > ct%ndeck) then
+      ! DAM's reverse passes (symmetric = .true.), master and slave swapped,
+      ! start from the force with the deck interfaces' contact forces in it:
+      ! where the first pass matched the two sides nothing is left to do,
+      ! and master nodes that cross the slave surface are caught.
+      call gather_nodes(ct, x_old, v_old, force)
+      call lap(ct%migrate_seconds)
+      call stage_round(ct%ndeck + 1, ct%npair)
+    end if
     if (final) then
       do k = 1, ct%npair
         do i = 1, ct%nown
@@ -348,12 +338,63 @@ contains
       end do
     end if
     if (final) call reduce_diagnostics(ct, has, dt)
-    call take(dlm_out, ct%kept(1), 3)
-    call take(dam_out, ct%kept(2), 10)
-    call take(putback, ct%kept(3), 3)
     call lap(ct%migrate_seconds)
 
   contains
+
+    !> The interfaces first..last in one round: the methods on the parts, the
+    !> owners' sums, and their contact forces added to force and ct%fc.
+    subroutine stage_round(first, last)
+      integer, intent(in) :: first, last
+      type(records_t) :: dlm_out, dam_out, putback
+      real(rk) :: fsum(3)
+      logical :: any_dam
+      call take(ct%kept(1), dlm_out, 3)
+      call take(ct%kept(2), dam_out, 10)
+      call take(ct%kept(3), putback, 3)
+      any_dam = .false.
+      do k = first, last
+        ct%pairs(k)%sums = step_sums_t()
+        select case (ct%pairs(k)%method)
+        case (METHOD_DLM)
+          call dlm_step(ct, ct%pairs(k), k, dt, final, dlm_out)
+        case (METHOD_DAM)
+          any_dam = .true.
+          call dam_exchange(ct, ct%pairs(k), k, dt, final, dam_out)
+        end select
+      end do
+      call lap(ct%enforce_seconds)
+
+      ! The owners: sums in key order.
+      call send_records(dlm_out, ct%all_owner, ct%own_of, ct%nown)
+      call sum_records(dlm_out, fck, has)
+      if (any_dam) then
+        call send_records(dam_out, ct%all_owner, ct%own_of, ct%nown)
+        if (.not. allocated(vmatch)) allocate(vmatch(3, ct%nown, ct%npair), &
+            touched(ct%nown, ct%npair))
+        call match_masters(ct, dam_out, v_old, force, dt, vmatch, touched)
+        call scatter_nodes(ct, vmatch, vm_local)
+        call lap(ct%migrate_seconds)
+        do k = first, last
+          if (ct%pairs(k)%method == METHOD_DAM) call dam_put_back(ct, ct%pairs(k), k, dt, &
+              vm_local(:, :, k), putback)
+        end do
+        call lap(ct%enforce_seconds)
+        call send_records(putback, ct%all_owner, ct%own_of, ct%nown)
+        call dam_forces(ct, first, last, putback, v_old, force, dt, vmatch, touched, fck, has)
+      end if
+      do i = 1, ct%nown
+        fsum = 0.0_rk
+        do k = first, last
+          if (has(i, k)) fsum = fsum + fck(:, i, k)
+        end do
+        ct%fc(:, i) = ct%fc(:, i) + fsum
+        force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + fsum
+      end do
+      call take(dlm_out, ct%kept(1), 3)
+      call take(dam_out, ct%kept(2), 10)
+      call take(putback, ct%kept(3), 3)
+    end subroutine stage_round
 
     subroutine lap(total)
       real(rk), intent(inout) :: total
@@ -380,6 +421,8 @@ contains
             real(count(p%was_active .and. .not. has(:, k)), rk)]
         p%was_active = has(:, k)
         call par_sum_array(sums)
+        p%pen_sq = sums(3)
+        p%pen_weight = sums(4)
         pen_max = par_max(s%pen_max)
         ! pen_rms: over the overlap area (DLM) or the penetrating slaves (DAM).
         if (p%method == METHOD_DLM) then
@@ -419,17 +462,6 @@ contains
       end associate
     end do
   end subroutine contact_work_update
-
-  !> Diagnostics of every pair, (CONTACT_DIAG_COUNT, npair), replicated.
-  function contact_diagnostics(ct) result(diag)
-    type(contact_t), intent(in) :: ct
-    real(rk), allocatable :: diag(:, :)
-    integer :: k
-    allocate(diag(CONTACT_DIAG_COUNT, ct%npair))
-    do k = 1, ct%npair
-      diag(:, k) = ct%pairs(k)%diag
-    end do
-  end function contact_diagnostics
 
   !> End-of-run summary on rank 0: the contact time split (largest over the
   !> ranks) and the local sets against the whole contact surface. Collective.

@@ -277,7 +277,8 @@ contains
     xall = reshape(flat, [3, ct%nall])
     ct%gap_own = huge(1.0_rk)
     allocate(rec(6), all(6, par_size()))
-    do k = 1, ct%npair
+    ! The deck's interfaces (a reverse pass audits nothing of its own).
+    do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
         allocate(sel_a(p%all_a%nnode), sel_b(p%all_b%nnode))
         do i = 1, p%all_a%nnode
@@ -316,7 +317,8 @@ contains
             worst(2) = max(worst(2), rb%pen(i))
             if (rb%pen(i) > rb%tol(i)) then
               sums(2) = sums(2) + 1.0_rk
-              if (p%method == METHOD_DLM .and. .not. p%was_active(o)) sums(3) = sums(3) + 1.0_rk
+              if (held_b(p, o)) cycle
+              sums(3) = sums(3) + 1.0_rk
               call deeper(rb%pen(i), c)
             end if
           end do
@@ -355,6 +357,23 @@ contains
     ct%audits = ct%audits + 1
 
   contains
+
+    !> Whether a penetrating node of surface b (owned node o) counts as held:
+    !> DLM and DAM's reverse pass enforce surface b's nodes, so such a node
+    !> is held when it carried a force in the last corrector; DAM's one pass
+    !> enforces slaves only, and a master node is reported in the side-b
+    !> columns and not as unheld.
+    logical function held_b(p, o)
+      type(interface_t), intent(in) :: p
+      integer, intent(in) :: o
+      if (p%method == METHOD_DLM) then
+        held_b = p%was_active(o)
+      else if (p%mirror > 0) then
+        held_b = ct%pairs(p%mirror)%was_active(o)
+      else
+        held_b = .true.
+      end if
+    end function held_b
 
     subroutine deeper(pen, node)
       real(rk), intent(in) :: pen
@@ -410,15 +429,16 @@ contains
   subroutine contact_step_end(ct)
     type(contact_t), intent(inout) :: ct
     real(rk), allocatable :: sums(:)
-    integer :: k, i
+    integer :: k, i, m
     if (ct%npair == 0) return
     allocate(sums(4 * ct%npair))
     sums = 0.0_rk
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
+        ! A reverse pass's surface a is its deck interface's surface b.
         do i = 1, ct%nown
-          if (p%own_in_a(i)) sums(4 * k - 3:4 * k - 1) = sums(4 * k - 3:4 * k - 1) + &
-              p%fc_own(:, i)
+          if (p%own_in_a(i) .eqv. p%mirror_of == 0) sums(4 * k - 3:4 * k - 1) = &
+              sums(4 * k - 3:4 * k - 1) + p%fc_own(:, i)
         end do
         sums(4 * k) = p%work_step
       end associate
@@ -429,6 +449,25 @@ contains
         p%work = p%work + sums(4 * k)
         p%diag(DIAG_FORCE:DIAG_FORCE + 2) = sums(4 * k - 3:4 * k - 1)
         p%diag(DIAG_WORK) = p%work
+      end associate
+    end do
+    ! DAM's reverse passes in their deck interface's columns: the enforced
+    ! pairs, forces, momentum and work add up; the largest penetration is
+    ! the larger, the RMS over both passes' penetrating nodes. Released
+    ! nodes are the first pass's: where it holds the two sides the second
+    ! has nothing to do, and whether it enforces a node then flips with the
+    ! round-off of a zero gap, which is no release.
+    do k = 1, ct%ndeck
+      m = ct%pairs(k)%mirror
+      if (m == 0) cycle
+      associate(p => ct%pairs(k), r => ct%pairs(m))
+        p%diag(1:2) = p%diag(1:2) + r%diag(1:2)
+        p%diag(3) = max(p%diag(3), r%diag(3))
+        p%diag(4) = sqrt((p%pen_sq + r%pen_sq) / max(p%pen_weight + r%pen_weight, 1.0_rk))
+        p%diag(6:8) = p%diag(6:8) + r%diag(6:8)
+        p%diag(DIAG_FORCE:DIAG_FORCE + 2) = p%diag(DIAG_FORCE:DIAG_FORCE + 2) + &
+            r%diag(DIAG_FORCE:DIAG_FORCE + 2)
+        p%diag(DIAG_WORK) = p%work + r%work
       end associate
     end do
   end subroutine contact_step_end

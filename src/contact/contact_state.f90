@@ -86,6 +86,8 @@ module contact_state
     real(rk) :: recovery = -1.0_rk
     !> Coulomb friction coefficient (0: frictionless, the friction code is skipped)
     real(rk) :: friction = 0.0_rk
+    !> DAM: a second pass with master and slave swapped (contact_enforce)
+    logical :: symmetric = .true.
   end type contact_spec_t
 
   !> Geometry of one surface at x^n, computed once per cycle (in the
@@ -106,6 +108,11 @@ module contact_state
     logical :: slave_normal = .false. !< DAM: the slave node's own normal (deck normal = 'slave')
     real(rk) :: recovery = 0.0_rk !< DLM velocity form: penetration fraction removed per step
     logical :: self = .false.
+    !> DAM symmetric: the reverse pass of a deck interface is an interface of
+    !> its own after the deck's (mirror_of: that deck interface; mirror: the
+    !> deck interface's reverse pass). Its diagnostics go to the deck
+    !> interface's columns (contact_monitor).
+    integer :: mirror = 0, mirror_of = 0
     logical :: single_part = .false. !< every pair on part 0 (DLM sweeps > 1)
     type(contact_surface_t) :: all_a, all_b !< whole surfaces, contact index (b = master for DAM)
     type(contact_surface_t) :: a, b !< this part's local surfaces, local index
@@ -134,6 +141,7 @@ module contact_state
     real(rk), allocatable :: ex_real(:, :) !< DAM: (3, nex) shares wm, ws and overlap s0
     logical, allocatable :: enforced(:) !< DAM: (ncn) local slave enforced this stage
     type(step_sums_t) :: sums !< this part's sums of the stage
+    real(rk) :: pen_sq = 0.0_rk, pen_weight = 0.0_rk !< sums(pen_sq, weight) over the parts
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     ! Audit and per-interface output (contact_monitor).
     real(rk) :: reach = 0.0_rk !< audit reach: twice the larger median segment size
@@ -162,7 +170,8 @@ module contact_state
 
   !> All contact of a run.
   type, public :: contact_t
-    integer :: npair = 0
+    integer :: npair = 0 !< interfaces: the deck's, then DAM's reverse passes
+    integer :: ndeck = 0 !< the deck's interfaces
     type(interface_t), allocatable :: pairs(:)
     ! Every contact node (static, on every rank).
     integer :: nall = 0 !< contact nodes of all surfaces

@@ -142,7 +142,7 @@ contains
       keys = [character(len=KEY_LEN) :: 'name', 'surface_a', 'surface_b', 'method', 'master', &
           'capture', 'penetration_warning', 'search_margin', 'search_every', 'form', &
           'sweeps', 'recovery', 'normal', 'penetration_tolerance', 'on_penetration', &
-          'initial_penetration', 'friction']
+          'initial_penetration', 'friction', 'symmetric']
     case default
       allocate(keys(0))
     end select
@@ -171,7 +171,7 @@ contains
     case ('output')
       types = 'ccriii'
     case ('contact')
-      types = 'cccccrrrici' // 'rc' // 'rcc' // 'r'
+      types = 'cccccrrrici' // 'rc' // 'rcc' // 'rl'
     case default
       types = ''
     end select
@@ -319,7 +319,8 @@ contains
           call read_boundary(sect, counts(7), config%boundaries(counts(7)), status)
         case ('contact')
           counts(9) = counts(9) + 1
-          call read_contact(sect, counts(9), config%contacts(counts(9)), status)
+          call read_contact(sect, counts(9), config%contacts(counts(9)), status, &
+              any(groups(ig)%key(:groups(ig)%nkey) == 'symmetric'))
         end select
       end associate
     end do
@@ -1501,22 +1502,24 @@ contains
 
   end subroutine read_boundary
 
-  subroutine read_contact(sect, index, pair, status)
+  subroutine read_contact(sect, index, pair, status, symmetric_given)
     character(len=LINE_LEN), intent(in) :: sect(:)
     integer, intent(in) :: index
     type(contact_spec_t), intent(inout) :: pair
     type(status_t), intent(inout) :: status
+    logical, intent(in) :: symmetric_given !< the deck sets symmetric
     character(len=NAME_LEN) :: name, master
     character(len=SURFACE_LEN) :: surface_a, surface_b
     character(len=16) :: method, form, normal, on_penetration, initial_penetration
     real(rk) :: capture, penetration_warning, search_margin, recovery, penetration_tolerance
     real(rk) :: friction
+    logical :: symmetric
     integer :: search_every, sweeps, ios
     character(len=256) :: msg
     character(len=16) :: where
     namelist /contact/ name, surface_a, surface_b, method, master, capture, &
         penetration_warning, search_margin, search_every, form, sweeps, recovery, normal, &
-        penetration_tolerance, on_penetration, initial_penetration, friction
+        penetration_tolerance, on_penetration, initial_penetration, friction, symmetric
 
     write(where, '(a,i0,a)') '&contact(', index, ')'
     name = ''
@@ -1534,6 +1537,7 @@ contains
     sweeps = pair%sweeps
     recovery = pair%recovery
     friction = pair%friction
+    symmetric = pair%symmetric
     form = ''
     normal = ''
     read(sect, nml=contact, iostat=ios, iomsg=msg)
@@ -1626,6 +1630,12 @@ contains
     if (.not. (friction >= 0.0_rk)) call status%add(trim(where)// &
         ': friction: must be >= 0 (the Coulomb coefficient; 0 = frictionless)')
     pair%friction = friction
+    if (symmetric_given .and. to_lower(method) == 'dlm') call status%add(trim(where)// &
+        ': symmetric: only for DAM (DLM is symmetric: every facet pair acts on both sides)')
+    if (symmetric_given .and. (surface_a == surface_b .or. len_trim(surface_b) == 0)) &
+        call status%add(trim(where)//': symmetric: not for self-contact (every node of '// &
+        'the surface is a slave already)')
+    pair%symmetric = symmetric .and. to_lower(method) == 'dam'
   end subroutine read_contact
 
   subroutine read_output(sect, out, status)

@@ -74,7 +74,7 @@ contains
     write(unit, '(i0,10(1x,es23.15e3))', advance='no') state%cycle, state%time, state%dt, &
         sums(1), sums(2), state%boundary_work, total, relative_error(total, state), sums(3:5)
     write(unit, '(1x,es23.15e3)', advance='no') state%contact_work
-    do k = 1, ct%npair
+    do k = 1, ct%ndeck
       write(unit, '(*(1x,es23.15e3))', advance='no') ct%pairs(k)%diag
     end do
     write(unit, '(a)') ''
