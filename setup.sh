@@ -9,7 +9,7 @@ build_dir=${2:-build}
 
 packages="gfortran gcc cmake make libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools
   libmetis-dev liblapack-dev numdiff python3 python3-numpy python3-h5py python3-matplotlib
-  libexodusii-dev libnetcdf-dev python3-netcdf4"
+  libexodusii-dev libnetcdf-dev python3-netcdf4 python3-meshio"
 missing=""
 for p in $packages; do
   dpkg -s "$p" >/dev/null 2>&1 || missing="$missing $p"

@@ -168,6 +168,7 @@ contains
     call report_more(status, prefix, nbad, 'nodes with non-finite coordinates')
 
     ! Element blocks: names, types, connectivity.
+    if (allocated(block_names)) deallocate(block_names)
     allocate(ids(nblock), block_names(nblock), zone_of_block(nelem), conn_all(8, nelem))
     if (exo_ids(exoid, KIND_BLOCK, ids) /= 0) then
       call status%add(prefix//'cannot read the element block ids (ex_get_ids failed)')

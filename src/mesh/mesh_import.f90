@@ -47,23 +47,29 @@ contains
   end function mesh_import_group_kind
 
   !> Area of face set k of mesh: the sum of the faces' vector-area norms
-  !> (exact for planar faces).
-  real(rk) function mesh_set_area(mesh, k) result(area)
+  !> (exact for planar faces); centre: the area-weighted mean of the faces'
+  !> vertex averages (0 for an empty set).
+  subroutine mesh_set_area(mesh, k, area, centre)
     type(global_mesh_t), intent(in) :: mesh
     integer, intent(in) :: k
+    real(rk), intent(out) :: area, centre(3)
     integer :: i
-    real(rk) :: p(3, 4)
+    real(rk) :: p(3, 4), a
     area = 0.0_rk
+    centre = 0.0_rk
     do i = mesh%set_start(k), mesh%set_start(k + 1) - 1
       p = mesh%coordinates(:, mesh%connectivity(HEX_FACE_NODES(:, mesh%set_face(i)), &
           mesh%set_zone(i)))
-      area = area + norm2(quad_vector_area(p))
+      a = norm2(quad_vector_area(p))
+      area = area + a
+      centre = centre + a * 0.25_rk * sum(p, dim=2)
     end do
-  end function mesh_set_area
+    if (area > 0.0_rk) centre = centre / area
+  end subroutine mesh_set_area
 
   !> Lines describing an imported part (before any rotation or offset):
   !> nodes, zones and volume; per group its zones and volume; per face set its
-  !> faces and area. Numbers in full precision (es24.16).
+  !> faces, area and centre. Numbers in full precision (es24.16).
   subroutine mesh_import_summary(mesh, groups, title, lines)
     type(global_mesh_t), intent(in) :: mesh
     character(len=*), intent(in) :: groups(:) !< zone_block indexes them
@@ -72,7 +78,7 @@ contains
     real(rk), allocatable :: volume(:)
     integer, allocatable :: zones(:)
     integer :: z, g, k, n
-    real(rk) :: v
+    real(rk) :: v, area, centre(3)
 
     allocate(volume(size(groups)), zones(size(groups)))
     volume = 0.0_rk
@@ -97,8 +103,10 @@ contains
     end do
     do k = 1, mesh%nset
       n = n + 1
-      write(lines(n), '(3a,i0,a,es24.16)') '  face set ''', trim(mesh%set_name(k)), ''': ', &
-          mesh%set_start(k + 1) - mesh%set_start(k), ' faces, area ', mesh_set_area(mesh, k)
+      call mesh_set_area(mesh, k, area, centre)
+      write(lines(n), '(3a,i0,a,es24.16,a,3es24.16)') '  face set ''', trim(mesh%set_name(k)), &
+          ''': ', mesh%set_start(k + 1) - mesh%set_start(k), ' faces, area ', area, &
+          ', centre', centre
     end do
   end subroutine mesh_import_summary
 
