@@ -66,10 +66,12 @@ contains
 
   !> Imported meshes: the volume group (Gmsh physical volume, Exodus element
   !> block) of each zone names its &block, which is then claimed by this part.
-  subroutine assign_blocks_by_name(config, where, file_text, group_names, global, claimed, status)
+  subroutine assign_blocks_by_name(config, where, kind, path, group_names, global, claimed, &
+      status)
     type(config_t), intent(in) :: config
     character(len=*), intent(in) :: where !< '&mesh' or '&mesh(k)'
-    character(len=*), intent(in) :: file_text !< "<kind> of mesh file '<path>'", for messages
+    character(len=*), intent(in) :: kind !< what the file calls a volume group, for messages
+    character(len=*), intent(in) :: path !< the mesh file, for messages
     character(len=*), intent(in) :: group_names(:)
     type(global_mesh_t), intent(inout) :: global
     logical, intent(inout) :: claimed(:) !< per &block
@@ -83,7 +85,8 @@ contains
         if (config%blocks(b)%name == group_names(g)) map(g) = b
       end do
       if (map(g) == 0 .and. any(global%zone_block == g)) call status%add(trim(where)// &
-          ': file: the '//file_text//' '''//trim(group_names(g))//''' has no &block of that name')
+          ': file: the '//kind//' '''//trim(group_names(g))//''' of mesh file '''//path// &
+          ''' has no &block of that name (valid: the name of any &block)')
       if (map(g) > 0 .and. any(global%zone_block == g)) claimed(map(g)) = .true.
     end do
     if (.not. status%ok()) return
@@ -106,7 +109,7 @@ contains
     integer :: k, n, b
     character(len=16) :: where
     character(len=200), allocatable :: lines(:)
-    character(len=:), allocatable :: file_text, imported
+    character(len=:), allocatable :: imported
     logical :: claimed(size(config%blocks))
 
     claimed = .false.
@@ -158,10 +161,8 @@ contains
           end if
           piece%zone_block = int(b, ik)
         else if (spec%mesh_type == 'gmsh' .or. spec%mesh_type == 'exodus') then
-          file_text = mesh_import_group_kind(spec%mesh_type)//' of mesh file '''// &
-              spec%mesh_path//''''
-          call assign_blocks_by_name(config, where, file_text, group_names, piece, claimed, &
-              status)
+          call assign_blocks_by_name(config, where, mesh_import_group_kind(spec%mesh_type), &
+              spec%mesh_path, group_names, piece, claimed, status)
           if (.not. status%ok()) return
           imported = imported//'; '//mesh_import_group_kind(spec%mesh_type)//'s of '''// &
               spec%mesh_path//''':'
