@@ -321,8 +321,9 @@ contains
       if (len_trim(text) > NAME_LEN) call status%add(prefix//'the name '''//trim(text)// &
           ''' of '//what//' '//itoa(int(ids(i)))//' is longer than '//itoa(NAME_LEN)// &
           ' characters')
-      if (index(trim(text), ' ') > 0) call status%add(prefix//'the name '''//trim(text)// &
-          ''' of '//what//' '//itoa(int(ids(i)))//' contains a blank')
+      if (scan(trim(text), ' ,') > 0) call status%add(prefix//'the name '''//trim(text)// &
+          ''' of '//what//' '//itoa(int(ids(i)))//' contains a blank or a comma (deck lists '// &
+          'of names are separated by them); rename it in the meshing tool')
       names(i) = text(1:NAME_LEN)
       do j = 1, i - 1
         if (names(j) == names(i)) call status%add(prefix//what//'s '//itoa(int(ids(j)))// &
