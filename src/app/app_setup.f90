@@ -1,10 +1,11 @@
 !> Set-up of a run: mesh, partition, blocks, boundaries, initial state.
 module app_setup
+  use, intrinsic :: iso_fortran_env, only: output_unit
   use core_kinds, only: rk, ik
   use core_status, only: status_t
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
-  use mesh_gmsh, only: mesh_read_gmsh
+  use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
   use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, &
       mesh_make_ball_octant, mesh_make_box_minus_ball
   use mesh_local, only: mesh_t, mesh_build_local
@@ -15,7 +16,7 @@ module app_setup
   use hydro_driver, only: material_zones_t, material_zones_build
   use io_deck, only: config_t
   use material_table, only: STRENGTH_NONE
-  use parallel_env, only: par_size
+  use parallel_env, only: par_size, par_rank
   use parallel_partition, only: partition_zones
   implicit none
   private
@@ -24,19 +25,25 @@ module app_setup
 contains
 
   !> Each zone not yet in a block belongs to the last block whose box holds
-  !> its centroid.
-  subroutine assign_blocks(config, global, status)
+  !> its centroid; blocks marked in claimed (named after a volume group of an
+  !> imported mesh file: they belong to that part) are not candidates.
+  subroutine assign_blocks(config, global, status, claimed)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(inout) :: global
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: claimed(:) !< per &block
     integer :: z, b, missing
     real(rk) :: c(3)
     character(len=32) :: text
+    logical :: taken(size(config%blocks))
+    taken = .false.
+    if (present(claimed)) taken = claimed
     missing = 0
     do z = 1, global%nzone
-      c = hex_centroid(global%coordinates(:, global%connectivity(:, z)))
       if (global%zone_block(z) /= 0) cycle
+      c = hex_centroid(global%coordinates(:, global%connectivity(:, z)))
       do b = 1, size(config%blocks)
+        if (taken(b)) cycle
         associate(box => config%blocks(b)%box)
           if (c(1) >= box(1) .and. c(1) <= box(2) .and. c(2) >= box(3) .and. &
               c(2) <= box(4) .and. c(3) >= box(5) .and. c(3) <= box(6)) global%zone_block(z) = b
@@ -46,16 +53,28 @@ contains
     end do
     if (missing > 0) then
       write(text, '(i0)') missing
-      call status%add('&block: box: '//trim(text)//' zones lie in no block''s box '// &
-          '(every zone needs a block)')
+      if (any(taken)) then
+        call status%add('&block: box: '//trim(text)//' zones lie in no block''s box '// &
+            '(every zone needs a block; a &block named after a physical volume or element '// &
+            'block of a mesh file holds that part''s zones only)')
+      else
+        call status%add('&block: box: '//trim(text)//' zones lie in no block''s box '// &
+            '(every zone needs a block)')
+      end if
     end if
   end subroutine assign_blocks
 
-  !> Imported meshes: the 3D physical group of each zone names its &block.
-  subroutine assign_blocks_by_name(config, group_names, global, status)
+  !> Imported meshes: the volume group (Gmsh physical volume, Exodus element
+  !> block) of each zone names its &block, which is then claimed by this part.
+  subroutine assign_blocks_by_name(config, where, kind, path, group_names, global, claimed, &
+      status)
     type(config_t), intent(in) :: config
+    character(len=*), intent(in) :: where !< '&mesh' or '&mesh(k)'
+    character(len=*), intent(in) :: kind !< what the file calls a volume group, for messages
+    character(len=*), intent(in) :: path !< the mesh file, for messages
     character(len=*), intent(in) :: group_names(:)
     type(global_mesh_t), intent(inout) :: global
+    logical, intent(inout) :: claimed(:) !< per &block
     type(status_t), intent(inout) :: status
     integer, allocatable :: map(:)
     integer :: g, b, z
@@ -65,12 +84,10 @@ contains
       do b = 1, size(config%blocks)
         if (config%blocks(b)%name == group_names(g)) map(g) = b
       end do
-      if (map(g) == 0 .and. any(global%zone_block == g)) call status%add('&block: name: the '// &
-          'mesh''s physical volume '''//trim(group_names(g))//''' has no &block of that name')
-    end do
-    do b = 1, size(config%blocks)
-      if (.not. any(group_names == config%blocks(b)%name)) call status%add('&block: name: '''// &
-          trim(config%blocks(b)%name)//''' is not a physical volume of the mesh file')
+      if (map(g) == 0 .and. any(global%zone_block == g)) call status%add(trim(where)// &
+          ': file: the '//kind//' '''//trim(group_names(g))//''' of mesh file '''//path// &
+          ''' has no &block of that name (valid: the name of any &block)')
+      if (map(g) > 0 .and. any(global%zone_block == g)) claimed(map(g)) = .true.
     end do
     if (.not. status%ok()) return
     do z = 1, global%nzone
@@ -91,7 +108,12 @@ contains
     type(global_mesh_t) :: piece
     integer :: k, n, b
     character(len=16) :: where
+    character(len=200), allocatable :: lines(:)
+    character(len=:), allocatable :: imported
+    logical :: claimed(size(config%blocks))
 
+    claimed = .false.
+    imported = ''
     call global%free()
     allocate(global%coordinates(3, 0), global%connectivity(8, 0), global%zone_block(0))
     do k = 1, size(config%parts)
@@ -109,8 +131,13 @@ contains
           call mesh_make_ball_octant(spec%ball, piece, status)
         case ('box_minus_ball')
           call mesh_make_box_minus_ball(spec%box_minus_ball, piece, status)
-        case ('gmsh')
-          call mesh_read_gmsh(trim(spec%mesh_file), piece, group_names, status)
+        case ('gmsh', 'exodus')
+          call mesh_import_file(spec%mesh_type, spec%mesh_path, piece, group_names, status)
+          if (status%ok() .and. par_rank() == 0) then
+            call mesh_import_summary(piece, group_names, trim(where)//': '// &
+                trim(spec%mesh_type)//' mesh file '''//spec%mesh_path//''' read:', lines)
+            write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
+          end if
         case default
           call mesh_make_box(spec%box, piece, status)
         end select
@@ -133,9 +160,15 @@ contains
             return
           end if
           piece%zone_block = int(b, ik)
-        else if (spec%mesh_type == 'gmsh') then
-          call assign_blocks_by_name(config, group_names, piece, status)
+        else if (spec%mesh_type == 'gmsh' .or. spec%mesh_type == 'exodus') then
+          call assign_blocks_by_name(config, where, mesh_import_group_kind(spec%mesh_type), &
+              spec%mesh_path, group_names, piece, claimed, status)
           if (.not. status%ok()) return
+          imported = imported//'; '//mesh_import_group_kind(spec%mesh_type)//'s of '''// &
+              spec%mesh_path//''':'
+          do n = 1, size(group_names)
+            if (any(piece%zone_block == n)) imported = imported//' '//trim(group_names(n))
+          end do
         else
           piece%zone_block = 0
         end if
@@ -143,8 +176,19 @@ contains
         call piece%free()
       end associate
     end do
-    call assign_blocks(config, global, status)
+    call assign_blocks(config, global, status, claimed)
     if (.not. status%ok()) return
+    ! With imported parts, a &block that holds no zone is a misspelt name.
+    if (len(imported) > 0) then
+      do b = 1, size(config%blocks)
+        if (any(global%zone_block == b)) cycle
+        write(where, '(a,i0,a)') '&block(', b, ')'
+        call status%add(trim(where)//': name: '''//trim(config%blocks(b)%name)//''' holds '// &
+            'no zone: it names no volume group of the mesh files ('//imported(3:)// &
+            '), no &mesh part''s block, and its box holds no zone of the other parts')
+      end do
+      if (.not. status%ok()) return
+    end if
     allocate(part(global%nzone))
     call partition_zones(global%nnode, global%connectivity, par_size(), part)
     call mesh_build_local(global, part, mesh)

@@ -5,6 +5,7 @@
 module io_deck
   use core_kinds, only: rk
   use core_status, only: status_t
+  use core_path, only: path_from_deck, path_directory, path_absolute
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, value_problem, &
       closest_name, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
@@ -60,7 +61,9 @@ module io_deck
     type(shell_spec_t) :: shell
     type(ball_spec_t) :: ball
     type(box_minus_ball_spec_t) :: box_minus_ball
-    character(len=PATH_LEN) :: mesh_file = ''
+    character(len=PATH_LEN) :: mesh_file = '' !< the file key as given (gmsh, exodus)
+    !> The file to read: mesh_file relative to the deck's directory, made absolute.
+    character(len=:), allocatable :: mesh_path
     real(rk) :: offset(3) = 0.0_rk !< translation applied to the part
     real(rk) :: rotation_axis(3) = 0.0_rk !< rotation of the part about the origin (before offset)
     real(rk) :: rotation_angle = 0.0_rk !< degrees, right-handed about rotation_axis
@@ -293,7 +296,8 @@ contains
           call read_hydro(sect, config%hydro, status)
         case ('mesh')
           counts(3) = counts(3) + 1
-          call read_mesh(sect, counts(3), size(config%parts), config%parts(counts(3)), status)
+          call read_mesh(sect, counts(3), size(config%parts), config%parts(counts(3)), status, &
+              path)
         case ('material')
           counts(4) = counts(4) + 1
           call read_material(sect, counts(4), config%materials(counts(4)), status, &
@@ -704,12 +708,13 @@ contains
     opt%hourglass_coefficient = hourglass_coefficient
   end subroutine read_hydro
 
-  subroutine read_mesh(sect, index, nparts, part, status)
+  subroutine read_mesh(sect, index, nparts, part, status, deck_path)
     character(len=LINE_LEN), intent(in) :: sect(:)
     integer, intent(in) :: index !< this group's place among the &mesh groups
     integer, intent(in) :: nparts !< number of &mesh groups
     type(mesh_part_t), intent(inout) :: part
     type(status_t), intent(inout) :: status
+    character(len=*), intent(in) :: deck_path !< mesh files are relative to its directory
     character(len=16) :: type, sector
     real(rk) :: x(MAX_INTERVALS + 1), y(MAX_INTERVALS + 1), z(MAX_INTERVALS + 1)
     real(rk) :: ratio_x(MAX_INTERVALS), ratio_y(MAX_INTERVALS), ratio_z(MAX_INTERVALS)
@@ -874,19 +879,35 @@ contains
         if (.not. (cavity%radial_ratio > 0.0_rk)) call status%add(trim(where)//': '// &
             'radial_ratio: must be > 0')
       end associate
-    case ('gmsh')
-      if (box_keys .or. curved_keys) call status%add(trim(where)//': type: ''gmsh'' takes only file')
+    case ('gmsh', 'exodus')
+      if (box_keys .or. curved_keys) call status%add(trim(where)//': type: '''//trim(type)// &
+          ''' takes only file')
       if (len_trim(file) == 0) then
-        call status%add(trim(where)//': file: required for type = ''gmsh'' (a .msh file)')
+        if (part%mesh_type == 'gmsh') then
+          call status%add(trim(where)//': file: required for type = ''gmsh'' (a .msh file)')
+        else
+          call status%add(trim(where)//': file: required for type = ''exodus'' (an Exodus II '// &
+              'file, .exo or .e)')
+        end if
       else
         part%mesh_file = file
-        if (par_rank() == 0) inquire(file=trim(file), exist=exists)
+        part%mesh_path = path_from_deck(deck_path, file)
+        exists = .false.
+        if (par_rank() == 0) inquire(file=part%mesh_path, exist=exists)
         call par_bcast(exists)
-        if (.not. exists) call status%add(trim(where)//': file: '''//trim(file)//''' does not exist')
+        if (.not. exists) then
+          if (file(1:1) == '/') then
+            call status%add(trim(where)//': file: '''//part%mesh_path//''' does not exist')
+          else
+            call status%add(trim(where)//': file: '''//part%mesh_path//''' does not exist '// &
+                '(a relative path is taken from the deck''s directory, '''// &
+                path_absolute(path_directory(deck_path))//''')')
+          end if
+        end if
       end if
     case default
       call status%add(trim(where)//': type: '''//trim(type)//''' is not a mesh type (valid: box, '// &
-          'rod, tube, shell, gmsh)')
+          'rod, tube, shell, ball, box_minus_ball, gmsh, exodus)')
     end select
 
   contains
