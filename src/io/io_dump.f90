@@ -144,6 +144,12 @@ contains
       if (e /= 0 .and. ierr == 0) ierr = e
     end if
 
+    ! Energy bookkeeping per zone (the history's per-material columns).
+    if (allocated(state%zone_plastic_work)) call zone_field('/restart/plastic_work', &
+        state%zone_plastic_work)
+    if (allocated(state%zone_hourglass_work)) call zone_field('/restart/hourglass_work', &
+        state%zone_hourglass_work)
+
     ! Run metadata (differs between runs; never compared).
     call h5_create_group(file, '/run', e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -537,6 +543,11 @@ contains
       call mesh%zone_halo%exchange(zlocal)
       state%zone_hourglass = reshape(zlocal, [3, 4, mesh%nzone])
     end if
+    ! Energy bookkeeping (absent from dumps written before it: zero then).
+    if (allocated(state%zone_plastic_work)) call optional_zone('/restart/plastic_work', &
+        state%zone_plastic_work)
+    if (allocated(state%zone_hourglass_work)) call optional_zone('/restart/hourglass_work', &
+        state%zone_hourglass_work)
     if (.not. agreed()) return
     call h5_close_file(file, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -545,6 +556,20 @@ contains
     call mesh%node_halo%exchange(state%node_velocity)
 
   contains
+
+    subroutine optional_zone(name, field)
+      character(len=*), intent(in) :: name
+      real(rk), intent(inout) :: field(:)
+      logical :: there
+      call h5_path_exists(file, name, there, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      if (e /= 0) return
+      if (there) then
+        call read_zone(name, field)
+      else
+        field = 0.0_rk
+      end if
+    end subroutine optional_zone
 
     subroutine read_zone(name, field)
       character(len=*), intent(in) :: name
