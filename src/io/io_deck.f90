@@ -414,8 +414,28 @@ contains
         end do
       end do
     end do
+    ! &control may change, except its unit system (the numbers would change
+    ! meaning; library data are converted with it).
+    a = units_of(old, nold)
+    b = units_of(new, nnew)
+    if (a /= b) call status%add('&control: units: changed since the restart dump ('// &
+        quoted(a)//' -> '//quoted(b)//')')
 
   contains
+
+    !> The unit system a deck's &control gives (lower case, no quotes).
+    function units_of(groups, n) result(units)
+      type(group_instance_t), intent(in) :: groups(:)
+      integer, intent(in) :: n
+      character(len=16) :: units
+      integer :: m, j
+      units = UNITS_CGSUS
+      do m = 1, n
+        if (groups(m)%name /= 'control') cycle
+        j = find_key(groups(m), 'units')
+        if (j > 0) units = to_lower(groups(m)%value(j)(2:max(2, len_trim(groups(m)%value(j)) - 1)))
+      end do
+    end function units_of
 
     integer function next_instance(groups, n, name, after)
       type(group_instance_t), intent(in) :: groups(:)

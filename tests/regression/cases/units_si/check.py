@@ -25,6 +25,8 @@ converts the library's EOS and strength data). Criteria:
   units     the dumps' root units attribute names the system, and the
             fields' units attributes are cm/us and m/s (velocity), Mbar and
             Pa (pressure).
+  restart   a restart of the SI run with units = 'cm-g-us-mbar' is an input
+            error naming &control: units.
 """
 
 import argparse
@@ -111,6 +113,17 @@ def main():
                       y["/nodes/velocity"].attrs["units"] == b"m/s" and
                       x["/zones/pressure"].attrs["units"] == b"Mbar" and
                       y["/zones/pressure"].attrs["units"] == b"Pa")
+    # A restart may change &control, but not its unit system.
+    with open(os.path.join(HERE, "taylor_si.nml")) as f:
+        deck = f.read().replace("units = 'si'", "units = 'cm-g-us-mbar'")
+    changed = os.path.join(si_dir, "changed.nml")
+    with open(changed, "w") as f:
+        f.write(deck)
+    p = subprocess.run([a.mpiexec, "-np", str(a.np), os.path.abspath(a.exe), "--restart",
+                        "dump_000050.h5", changed], cwd=si_dir, capture_output=True, text=True)
+    check("restart with changed units refused (exit 1, names &control: units)",
+          p.returncode == 1 and "&control: units: changed since the restart dump" in p.stderr,
+          "exit %d" % p.returncode)
     for k, w in worst.items():
         print("  %-34s largest difference / scale %.3e" % (k, w))
     check("every field equal after conversion within 100 N eps of its scale",
