@@ -45,7 +45,7 @@ contains
         read(unit, '(a)', iostat=ios) line
         if (ios /= 0) exit
         read(line, *, iostat=ios) c
-        if (ios == 0 .and. c <= state%cycle) keep = [keep, line]
+        if (ios == 0 .and. c <= state%cycle) keep = [character(len=len(line)) :: keep, line]
       end do
       close(unit)
     end if

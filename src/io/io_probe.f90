@@ -231,7 +231,7 @@ contains
             comma = index(line, ',')
             if (comma < 2) cycle
             read(line(1:comma - 1), *, iostat=ios) c
-            if (ios == 0 .and. c <= state%cycle) keep = [keep, line]
+            if (ios == 0 .and. c <= state%cycle) keep = [character(len=len(line)) :: keep, line]
           end do
           close(unit)
           if (.not. same) write(error_unit, '(a)') 'warning: '//p%path//': its columns differ '// &
