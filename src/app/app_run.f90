@@ -18,6 +18,7 @@ module app_run
   use io_dump, only: dump_write, dump_read, dump_series_update, run_info_t
   use io_history, only: history_open, history_write, relative_error
   use io_output, only: status_line, seconds
+  use io_probe, only: probes_t, probe_setup, probe_open, probe_sample
   use core_version, only: IMPACT3D_VERSION
   use solver_eta, only: eta_t
   use app_provenance, only: restart_deck_check, command_line
@@ -55,6 +56,7 @@ contains
     type(contact_t) :: ct
     type(initial_offsets_t), allocatable :: offsets(:)
     type(control_t) :: ctl
+    type(probes_t) :: probes
     character(len=256) :: restart
     character(len=400) :: msg
     logical :: exists
@@ -93,6 +95,8 @@ contains
           status)
     end if
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
+    if (status%ok()) call probe_setup(config%probes, global, mesh, config%output%directory, &
+        config%units, probes, status)
     if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
         status, offsets)
     if (.not. status%ok()) then
@@ -132,11 +136,14 @@ contains
       state%energy_initial = total_energy(mesh, state)
       call history_open(config, state, .false.)
       call history_write(config, mesh, state, ct)
+      call probe_open(probes, state, .false.)
+      call probe_sample(probes, state)
     else
       call history_open(config, state, .true.)
+      call probe_open(probes, state, .true.)
     end if
-    call time_loop(config, mesh, state, mz, bc, ct, ctl, len_trim(restart) > 0, wall_begin, &
-        wall_read, code)
+    call time_loop(config, mesh, state, mz, bc, ct, ctl, probes, len_trim(restart) > 0, &
+        wall_begin, wall_read, code)
     call h5_library_close(ierr, msg)
   end subroutine run_deck
 
@@ -176,8 +183,8 @@ contains
   end function total_energy
 
   !> The predictor-corrector loop.
-  subroutine time_loop(config, mesh, state, mz, bc, ct, ctl, restarted, wall_begin, wall_read, &
-      code)
+  subroutine time_loop(config, mesh, state, mz, bc, ct, ctl, probes, restarted, wall_begin, &
+      wall_read, code)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
@@ -185,6 +192,7 @@ contains
     type(boundary_t), intent(inout) :: bc
     type(contact_t), intent(inout) :: ct
     type(control_t), intent(inout) :: ctl
+    type(probes_t), intent(inout) :: probes
     logical, intent(in) :: restarted
     real(rk), intent(in) :: wall_begin !< start of the run, for the wall-time limit
     real(rk), intent(in) :: wall_read !< seconds the restart read took (0 for a new run)
@@ -306,6 +314,7 @@ contains
         call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl, request, signum)
       end if
       if (ctl%fail /= FAIL_NONE) cycle
+      call probe_sample(probes, state)
       if (ctl%stop /= STOP_NONE .and. .not. plan%last) then
         call history_write(config, mesh, state, ct)
         if (par_rank() == 0) then
@@ -413,7 +422,7 @@ contains
       if (b > 1) names = names//','
       names = names//trim(config%blocks(b)%name)
     end do
-    call dump_write(trim(path), config%title, 'consistent (decks: cm g us Mbar)', names, &
+    call dump_write(trim(path), config%title, trim(config%units), names, &
         mesh, state, info, status)
     ok = status%ok()
     if (.not. ok) then

@@ -10,7 +10,7 @@ module app_setup
       mesh_make_ball_octant, mesh_make_box_minus_ball
   use mesh_local, only: mesh_t, mesh_build_local
   use contact_surface, only: set_names_of
-  use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS
+  use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS, HOURGLASS_NONE
   use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
@@ -258,7 +258,8 @@ contains
     integer :: n, z, j
     real(rk) :: m
     call state_init(state, mesh%nnode, mesh%nzone, config%hydro%hourglass == HOURGLASS_STIFFNESS, &
-        any(config%materials%strength /= STRENGTH_NONE))
+        any(config%materials%strength /= STRENGTH_NONE), &
+        hourglass=config%hydro%hourglass /= HOURGLASS_NONE)
     do n = 1, mesh%nnode
       state%node_position(:, n) = global%coordinates(:, mesh%node_gid(n))
     end do

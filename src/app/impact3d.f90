@@ -89,8 +89,8 @@ contains
 
   !> Every deck group and its keys, one group per line.
   subroutine print_keys()
-    character(len=8), parameter :: groups(9) = [character(len=8) :: 'control', 'hydro', &
-        'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact']
+    character(len=8), parameter :: groups(10) = [character(len=8) :: 'control', 'hydro', &
+        'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact', 'probe']
     character(len=64), allocatable :: keys(:)
     integer :: g, k
     do g = 1, size(groups)

@@ -14,6 +14,7 @@ module hydro_driver
   private
   public :: hydro_zone_update, hydro_forces, hydro_energy_update, hydro_velocity_update
   public :: hydro_time_step, hydro_energies, material_zones_build, hydro_strength_update
+  public :: hydro_material_energies
 
   !> Zones of each material (local indices), for the EOS loops.
   type, public :: material_zones_t
@@ -99,7 +100,21 @@ contains
     integer :: z, k
     real(rk) :: s(6), b(3)
     real(rk) :: unused(3, 4, 1)
-    if (opt%hourglass == HOURGLASS_STIFFNESS) then
+    ! The corrector (stage_dt > 0) books the hourglass forces' work.
+    if (stage_dt > 0.0_rk .and. allocated(state%zone_hourglass_work)) then
+      if (opt%hourglass == HOURGLASS_STIFFNESS) then
+        call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+            state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
+            state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
+            state%zone_hourglass, state%zone_hourglass_new, state%corner_force, &
+            state%zone_hourglass_work)
+      else
+        call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+            state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
+            state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
+            unused, unused, state%corner_force, state%zone_hourglass_work)
+      end if
+    else if (opt%hourglass == HOURGLASS_STIFFNESS) then
       call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
@@ -191,7 +206,7 @@ contains
     real(rk), intent(inout) :: to(:, :)
     logical, intent(in) :: accumulate
     integer :: m, i, z, k
-    real(rk) :: vz(3, 8), grad(3, 3), dp, shear, yield, hardening
+    real(rk) :: vz(3, 8), grad(3, 3), dp, shear, yield, hardening, sbar
     do m = 1, size(materials)
       if (materials(m)%strength == STRENGTH_NONE) cycle
       do i = mz%start(m), mz%start(m + 1) - 1
@@ -206,6 +221,14 @@ contains
             shear, yield, hardening)
         call deviatoric_update(from(:, z), grad, step, shear, yield, to(:, z), dp, hardening)
         if (accumulate) state%zone_plastic_strain(z) = state%zone_plastic_strain(z) + dp
+        if (accumulate .and. dp > 0.0_rk) then
+          ! Plastic work s : d(eps_p) V = sbar dp V (von Mises: the returned
+          ! stress is on the yield surface, its equivalent stress sbar).
+          sbar = sqrt(1.5_rk * (to(1, z)**2 + to(2, z)**2 + to(3, z)**2 &
+              + 2.0_rk * (to(4, z)**2 + to(5, z)**2 + to(6, z)**2)))
+          state%zone_plastic_work(z) = state%zone_plastic_work(z) + sbar * dp * &
+              state%zone_volume(z)
+        end if
       end do
     end do
   end subroutine hydro_strength_update
@@ -221,6 +244,42 @@ contains
         opt%q_quadratic, state%zone_length, state%zone_sound_speed, state%zone_divergence, &
         dt, zone, reason)
   end subroutine hydro_time_step
+
+  !> Local sums over owned zones per material m = zone_material(z):
+  !> sums(:, m) = internal energy, kinetic energy (each corner's eighth of the
+  !> zone mass at its node's velocity: the nodal masses are the same eighths,
+  !> so the sum over materials is the total), plastic work, hourglass work.
+  subroutine hydro_material_energies(mesh, state, zone_material, sums)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    integer, intent(in) :: zone_material(:) !< material of each local zone
+    real(rk), intent(out) :: sums(:, :) !< (4, nmaterial)
+    integer :: z, k, m, node
+    real(rk) :: v2
+    sums = 0.0_rk
+    do z = 1, mesh%nzone_owned
+      m = zone_material(z)
+      sums(1, m) = sums(1, m) + state%zone_mass(z) * state%zone_energy(z)
+      v2 = 0.0_rk
+      do k = 1, 8
+        node = mesh%zone_node(k, z)
+        v2 = v2 + dot_product(state%node_velocity(:, node), state%node_velocity(:, node))
+      end do
+      sums(2, m) = sums(2, m) + 0.0625_rk * state%zone_mass(z) * v2
+    end do
+    if (allocated(state%zone_plastic_work)) then
+      do z = 1, mesh%nzone_owned
+        m = zone_material(z)
+        sums(3, m) = sums(3, m) + state%zone_plastic_work(z)
+      end do
+    end if
+    if (allocated(state%zone_hourglass_work)) then
+      do z = 1, mesh%nzone_owned
+        m = zone_material(z)
+        sums(4, m) = sums(4, m) + state%zone_hourglass_work(z)
+      end do
+    end if
+  end subroutine hydro_material_energies
 
   !> Local sums over owned items: internal and kinetic energy, momentum.
   subroutine hydro_energies(mesh, state, sums)

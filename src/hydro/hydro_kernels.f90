@@ -102,8 +102,11 @@ contains
   !> forces, f_k = -sum_m gamma_km Q_m with Q_m = kappa/4 rho c V^2/3 (gamma_m . v)
   !> (viscous) or its time integral with rate kappa/4 rho c^2 V^1/3 (stiffness). With stiffness hourglass control the generalised hourglass stress
   !> used is hg + stage_dt/2 * rate, and hg_new = hg + stage_dt * rate.
+  !> With hg_work present, each zone's hg_work grows by the energy its
+  !> hourglass forces take from the velocities v over stage_dt:
+  !> -stage_dt sum_k f_k . v_k = stage_dt sum_m Q_m . (gamma_m . v).
   subroutine zone_corner_forces(n, zone_node, x, v, volume, b, pressure, q, density, &
-      sound_speed, hourglass, coefficient, stage_dt, hg, hg_new, force)
+      sound_speed, hourglass, coefficient, stage_dt, hg, hg_new, force, hg_work)
     integer, intent(in) :: n
     integer, intent(in) :: zone_node(:, :)
     real(rk), intent(in) :: x(:, :), v(:, :), volume(:), b(:, :, :)
@@ -114,11 +117,13 @@ contains
     real(rk), intent(in) :: hg(:, :, :) !< stiffness state at t^n (unused otherwise)
     real(rk), intent(inout) :: hg_new(:, :, :) !< stiffness state at t^n+1
     real(rk), intent(inout) :: force(:, :, :)
+    real(rk), intent(inout), optional :: hg_work(:)
     real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
     real(rk) :: ptot, scale, rvol, f(3)
     integer :: z, k, m, node
-    logical :: with_hourglass
+    logical :: with_hourglass, book
     with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
+    book = present(hg_work)
     do z = 1, n
       ptot = pressure(z) + q(z)
       ! A tangled zone (the run stops at the end of the cycle) gets no hourglass force.
@@ -157,6 +162,7 @@ contains
         stress = hg(:, :, z) + 0.5_rk * stage_dt * scale * rate
         hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale * rate
       end if
+      if (book) hg_work(z) = hg_work(z) + stage_dt * sum(stress * rate)
       do k = 1, 8
         f = ptot * b(:, k, z)
         do m = 1, 4

@@ -51,6 +51,13 @@ module hydro_state
     real(rk), allocatable :: zone_stress(:, :) !< (6, nzone) deviatoric stress (strength only)
     real(rk), allocatable :: zone_stress_half(:, :) !< its value at t^n+1/2
     real(rk), allocatable :: zone_plastic_strain(:) !< equivalent plastic strain
+    !> plastic work of the zone so far, sum of sbar dp V over the final strength
+    !> updates (strength only; restart data)
+    real(rk), allocatable :: zone_plastic_work(:)
+    !> energy the hourglass forces have taken from the zone's nodes so far,
+    !> sum of -dt F_hg . v over the corrector stages (hourglass control on
+    !> only; restart data)
+    real(rk), allocatable :: zone_hourglass_work(:)
     !> signed distance of a contact node to the opposite surface at the last
     !> contact audit (< 0: penetration; 0 off the contact surfaces)
     real(rk), allocatable :: node_contact_gap(:)
@@ -68,11 +75,12 @@ module hydro_state
 contains
 
   !> Allocate every field for nnode nodes and nzone zones, zeroed.
-  subroutine state_init(this, nnode, nzone, stiffness, strength)
+  subroutine state_init(this, nnode, nzone, stiffness, strength, hourglass)
     type(state_t), intent(out) :: this !< intent(out) frees and resets everything
     integer, intent(in) :: nnode, nzone
     logical, intent(in) :: stiffness !< hourglass stiffness state needed
     logical, intent(in) :: strength !< some material has strength: deviatoric state needed
+    logical, intent(in), optional :: hourglass !< hourglass control on: its work is booked
     allocate(this%node_position(3, nnode), this%node_velocity(3, nnode), this%node_mass(nnode))
     allocate(this%node_force(3, nnode), this%node_position_old(3, nnode))
     allocate(this%node_velocity_old(3, nnode), this%node_velocity_half(3, nnode))
@@ -94,6 +102,14 @@ contains
       this%zone_stress = 0.0_rk
       this%zone_stress_half = 0.0_rk
       this%zone_plastic_strain = 0.0_rk
+      allocate(this%zone_plastic_work(nzone))
+      this%zone_plastic_work = 0.0_rk
+    end if
+    if (present(hourglass)) then
+      if (hourglass) then
+        allocate(this%zone_hourglass_work(nzone))
+        this%zone_hourglass_work = 0.0_rk
+      end if
     end if
     this%node_position = 0.0_rk
     this%node_velocity = 0.0_rk

@@ -1,11 +1,13 @@
 !> The input deck: namelist groups &control, &hydro, &mesh, &material,
-!> &block, &region, &boundary, &contact and &output. Rank 0 reads the file and
+!> &block, &region, &boundary, &contact, &output and &probe. Rank 0 reads the file and
 !> broadcasts its text; every rank then parses the same text, and rank 0
 !> reports every problem found (group, key, reason) before any work starts.
 module io_deck
   use core_kinds, only: rk
   use core_status, only: status_t
   use core_path, only: path_from_deck, path_directory, path_absolute
+  use core_units, only: units_valid, UNITS_CGSUS, UNITS_LIST, UNITS_SI, UNITS_NONE, &
+      SI_DENSITY, SI_VELOCITY, SI_PRESSURE, SI_SPECIFIC_ENERGY, SI_TIME
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, value_problem, &
       closest_name, LINE_LEN, KEY_LEN
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
@@ -27,9 +29,27 @@ module io_deck
 
   integer, parameter, public :: DECK_FORMAT_VERSION = 1
   integer, parameter, public :: PATH_LEN = 256
-  integer, parameter :: NGROUP_KNOWN = 9
+  integer, parameter :: NGROUP_KNOWN = 10
   character(len=*), parameter :: GROUP_NAMES(NGROUP_KNOWN) = [character(len=8) :: &
-      'control', 'hydro', 'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact']
+      'control', 'hydro', 'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact', &
+      'probe']
+
+  !> Fields a &probe may record (docs/user-guide.md, &probe).
+  integer, parameter, public :: PROBE_FIELD_LEN = 16
+  character(len=*), parameter, public :: PROBE_FIELDS(9) = [character(len=PROBE_FIELD_LEN) :: &
+      'velocity', 'position', 'pressure', 'density', 'energy', 'stress', 'plastic_strain', &
+      'viscosity', 'sound_speed']
+
+  !> One &probe group: a time history of chosen fields at one node / zone.
+  type, public :: probe_spec_t
+    character(len=NAME_LEN) :: name = ''
+    integer :: node = 0 !< global node id (0: given by point)
+    logical :: at_point = .false. !< point given
+    real(rk) :: point(3) = 0.0_rk
+    character(len=PROBE_FIELD_LEN), allocatable :: fields(:)
+    integer :: every = 0 !< cycles between rows (0: by interval)
+    real(rk) :: interval = 0.0_rk !< simulated time between rows (0: by every)
+  end type probe_spec_t
 
   !> A block: zones whose centroid lies in box, made of one material.
   type, public :: block_spec_t
@@ -99,6 +119,8 @@ module io_deck
     type(boundary_spec_t), allocatable :: boundaries(:)
     type(contact_spec_t), allocatable :: contacts(:)
     type(output_options_t) :: output
+    type(probe_spec_t), allocatable :: probes(:) !< one per &probe group
+    character(len=16) :: units = UNITS_CGSUS !< &control units: unit system of the deck
     logical :: materials_read = .true. !< false when a &material could not be read
     character(len=:), allocatable :: deck_text !< the deck file as read (for the dumps)
   end type config_t
@@ -113,7 +135,7 @@ contains
     case ('control')
       keys = [character(len=KEY_LEN) :: 'title', 't_end', 'max_cycles', 'deck_version', &
           'restart', 'cfl', 'dt_initial', 'dt_max', 'dt_min', 'dt_growth', 'dvol_max', &
-          'fault_cycle', 'fault_kind', 'wall_limit', 'stop_file', 'stop_check_every']
+          'fault_cycle', 'fault_kind', 'wall_limit', 'stop_file', 'stop_check_every', 'units']
     case ('hydro')
       keys = [character(len=KEY_LEN) :: 'q_linear', 'q_quadratic', 'q_limiter', &
           'q_linear_limited', 'hourglass', 'hourglass_coefficient']
@@ -146,6 +168,8 @@ contains
           'capture', 'penetration_warning', 'search_margin', 'search_every', 'form', &
           'sweeps', 'recovery', 'normal', 'penetration_tolerance', 'on_penetration', &
           'initial_penetration', 'friction', 'symmetric']
+    case ('probe')
+      keys = [character(len=KEY_LEN) :: 'name', 'node', 'point', 'fields', 'every', 'interval']
     case default
       allocate(keys(0))
     end select
@@ -158,7 +182,7 @@ contains
     character(len=:), allocatable :: types
     select case (group)
     case ('control')
-      types = 'crii' // 'crrrrrr' // 'icrci'
+      types = 'crii' // 'crrrrrr' // 'icrci' // 'c'
     case ('hydro')
       types = 'rrllcr'
     case ('mesh')
@@ -175,6 +199,8 @@ contains
       types = 'ccriii'
     case ('contact')
       types = 'cccccrrrici' // 'rc' // 'rcc' // 'rl'
+    case ('probe')
+      types = 'circir'
     case default
       types = ''
     end select
@@ -280,18 +306,20 @@ contains
 
     allocate(config%materials(counts(4)), config%blocks(counts(5)), config%regions(counts(6)))
     allocate(config%boundaries(counts(7)), config%contacts(counts(9)))
-    allocate(config%parts(counts(3)))
+    allocate(config%parts(counts(3)), config%probes(counts(10)))
     counts = 0
     allocate(sections(ngroup))
     do ig = 1, ngroup
       known = deck_known_keys(trim(groups(ig)%name))
       sections(ig)%text = group_text(lines, groups(ig), known, skips(ig)%key)
     end do
+    ! &control first: its units decide how library data are read.
+    do ig = 1, ngroup
+      if (trim(groups(ig)%name) == 'control') call read_control(sections(ig)%text, config, status)
+    end do
     do ig = 1, ngroup
       associate(sect => sections(ig)%text)
         select case (trim(groups(ig)%name))
-        case ('control')
-          call read_control(sect, config, status)
         case ('hydro')
           call read_hydro(sect, config%hydro, status)
         case ('mesh')
@@ -301,7 +329,7 @@ contains
         case ('material')
           counts(4) = counts(4) + 1
           call read_material(sect, counts(4), config%materials(counts(4)), status, &
-              config%materials_read)
+              config%materials_read, config%units)
         case ('output')
           call read_output(sect, config%output, status)
         end select
@@ -325,6 +353,9 @@ contains
           counts(9) = counts(9) + 1
           call read_contact(sect, counts(9), config%contacts(counts(9)), status, &
               any(groups(ig)%key(:groups(ig)%nkey) == 'symmetric'))
+        case ('probe')
+          counts(10) = counts(10) + 1
+          call read_probe(sect, counts(10), config, status)
         end select
       end associate
     end do
@@ -388,8 +419,28 @@ contains
         end do
       end do
     end do
+    ! &control may change, except its unit system (the numbers would change
+    ! meaning; library data are converted with it).
+    a = units_of(old, nold)
+    b = units_of(new, nnew)
+    if (a /= b) call status%add('&control: units: changed since the restart dump ('// &
+        quoted(a)//' -> '//quoted(b)//')')
 
   contains
+
+    !> The unit system a deck's &control gives (lower case, no quotes).
+    function units_of(groups, n) result(units)
+      type(group_instance_t), intent(in) :: groups(:)
+      integer, intent(in) :: n
+      character(len=16) :: units
+      integer :: m, j
+      units = UNITS_CGSUS
+      do m = 1, n
+        if (groups(m)%name /= 'control') cycle
+        j = find_key(groups(m), 'units')
+        if (j > 0) units = to_lower(groups(m)%value(j)(2:max(2, len_trim(groups(m)%value(j)) - 1)))
+      end do
+    end function units_of
 
     integer function next_instance(groups, n, name, after)
       type(group_instance_t), intent(in) :: groups(:)
@@ -596,9 +647,10 @@ contains
     character(len=PATH_LEN) :: stop_file
     real(rk) :: wall_limit
     character(len=256) :: msg
+    character(len=16) :: units
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
         dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind, wall_limit, stop_file, &
-        stop_check_every
+        stop_check_every, units
 
     title = config%title
     t_end = config%t_end
@@ -610,6 +662,7 @@ contains
     stop_check_every = config%stop_check_every
     deck_version = DECK_FORMAT_VERSION
     restart = ''
+    units = config%units
     cfl = config%hydro%cfl
     dt_initial = config%hydro%dt_initial
     dt_max = config%hydro%dt_max
@@ -640,6 +693,9 @@ contains
     config%stop_file = stop_file
     config%stop_check_every = stop_check_every
     config%fault_kind = fault_kind
+    if (.not. units_valid(to_lower(units))) call status%add('&control: units: '''// &
+        trim(units)//''' is not a unit system (valid: '//UNITS_LIST//')')
+    config%units = to_lower(units)
     if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
         'in (0, 1]')
     if (dt_initial < 0.0_rk) call status%add('&control: dt_initial: must be >= 0 '// &
@@ -950,13 +1006,14 @@ contains
 
   end subroutine read_mesh
 
-  subroutine read_material(sect, index, mat, status, read_ok)
+  subroutine read_material(sect, index, mat, status, read_ok, units)
     use material_flow_stress, only: steinberg_guinan_t, johnson_cook_t, SG_REFERENCE_TEMPERATURE
     character(len=LINE_LEN), intent(in) :: sect(:)
     integer, intent(in) :: index
     type(material_t), intent(inout) :: mat
     type(status_t), intent(inout) :: status
     logical, intent(inout) :: read_ok !< set false when the group cannot be read
+    character(len=*), intent(in) :: units !< &control units: library data are converted to it
     character(len=*), parameter :: SG_LIBS = ' (or a library with Steinberg-Guinan data: '// &
         SG_SET_NAMES//')'
     character(len=*), parameter :: JC_LIBS = ' (or a library with Johnson-Cook data: '// &
@@ -1040,6 +1097,16 @@ contains
         call material_library(to_lower(library), mat%mg, lib_shear, lib_yield, found)
         if (.not. found) call status%add(trim(where)//': library: '''//trim(library)// &
             ''' is not a built-in material (valid: al6061, cu_ofhc, cu_taylor, ss304, be_verney)')
+        if (found .and. units == UNITS_NONE) call status%add(trim(where)//': library: '''// &
+            trim(library)//''' has data in cm-g-us-mbar; with &control units = ''none'' give '// &
+            'every property yourself (or choose units = ''cm-g-us-mbar'' or ''si'')')
+        ! Library data are cm-g-us-mbar: to SI (kg, m, s, Pa) when asked.
+        if (found .and. units == UNITS_SI) then
+          mat%mg%rho0 = mat%mg%rho0 * SI_DENSITY
+          mat%mg%c0 = mat%mg%c0 * SI_VELOCITY
+          lib_shear = lib_shear * SI_PRESSURE
+          lib_yield = lib_yield * SI_PRESSURE
+        end if
       end if
       if (rho0 /= UNSET) mat%mg%rho0 = rho0
       if (c0 /= UNSET) mat%mg%c0 = c0
@@ -1099,6 +1166,13 @@ contains
     case ('steinberg_guinan')
       mat%strength = STRENGTH_STEINBERG_GUINAN
       mat%sg = sg_set(to_lower(library))
+      if (mat%sg%g0 > 0.0_rk .and. units == UNITS_SI) then
+        mat%sg%g0 = mat%sg%g0 * SI_PRESSURE
+        mat%sg%y0 = mat%sg%y0 * SI_PRESSURE
+        mat%sg%ymax = mat%sg%ymax * SI_PRESSURE
+        mat%sg%a = mat%sg%a / SI_PRESSURE
+        mat%sg%cv = mat%sg%cv * SI_SPECIFIC_ENERGY
+      end if
       if (.not. (mat%sg%g0 > 0.0_rk)) mat%sg = steinberg_guinan_t(g0=UNSET, y0=UNSET, &
           ymax=UNSET, beta=UNSET, n=UNSET, eps_i=0.0_rk, a=UNSET, b=UNSET, tm0=UNSET, &
           gamma0=UNSET, a_melt=UNSET, rho0=UNSET, cv=UNSET)
@@ -1155,6 +1229,15 @@ contains
       mat%jc = jc_set(to_lower(library))
       if (.not. (mat%jc%a > 0.0_rk)) mat%jc = johnson_cook_t(a=UNSET, b=UNSET, n=UNSET, &
           c=UNSET, m=UNSET, tm=UNSET, cv=UNSET)
+      if (units == UNITS_SI) then
+        ! The default reference rate 1e-6 /us is 1 /s.
+        mat%jc%eps_dot0 = mat%jc%eps_dot0 / SI_TIME
+        if (mat%jc%a > 0.0_rk) then
+          mat%jc%a = mat%jc%a * SI_PRESSURE
+          mat%jc%b = mat%jc%b * SI_PRESSURE
+          mat%jc%cv = mat%jc%cv * SI_SPECIFIC_ENERGY
+        end if
+      end if
       mat%shear_modulus = lib_shear
       if (shear_modulus /= UNSET) mat%shear_modulus = shear_modulus
       if (jc_a /= UNSET) mat%jc%a = jc_a
@@ -1658,6 +1741,104 @@ contains
         'the surface is a slave already)')
     pair%symmetric = symmetric .and. to_lower(method) == 'dam'
   end subroutine read_contact
+
+  !> One &probe group. The node range and whether the point lies in the mesh
+  !> are checked when the mesh is built (io_probe).
+  subroutine read_probe(sect, index, config, status)
+    character(len=LINE_LEN), intent(in) :: sect(:)
+    integer, intent(in) :: index
+    type(config_t), intent(inout) :: config
+    type(status_t), intent(inout) :: status
+    character(len=NAME_LEN) :: name
+    character(len=256) :: fields
+    integer :: node, every, ios, i, k, start
+    real(rk) :: point(3), interval
+    character(len=256) :: msg
+    character(len=:), allocatable :: where, word
+    character(len=PROBE_FIELD_LEN), allocatable :: list(:)
+    logical :: strength
+    namelist /probe/ name, node, point, fields, every, interval
+
+    name = ''
+    node = 0
+    point = huge(1.0_rk)
+    fields = ''
+    every = 0
+    interval = 0.0_rk
+    read(sect, nml=probe, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      write(msg, '(a,i0,a)') '&probe(', index, '): cannot read the group: '//trim(msg)
+      call status%add(trim(msg))
+      return
+    end if
+    if (len_trim(name) == 0) then
+      write(msg, '(a,i0,a)') '&probe(', index, ')'
+      where = trim(msg)
+      call status%add(where//': name: required (the file is probe_<name>.csv)')
+    else
+      where = '&probe '''//trim(name)//''''
+    end if
+    if (verify(trim(name), 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.') &
+        /= 0) call status%add(where//': name: only letters, digits, ''_'', ''-'' and ''.'' '// &
+        '(it names the file probe_<name>.csv)')
+    do i = 1, index - 1
+      if (config%probes(i)%name == name .and. len_trim(name) > 0) call status%add(where// &
+          ': name: given to two probes')
+    end do
+    config%probes(index)%name = name
+    config%probes(index)%at_point = any(point /= huge(1.0_rk))
+    if (config%probes(index)%at_point .and. any(point == huge(1.0_rk))) call status%add( &
+        where//': point: needs 3 coordinates x, y, z')
+    if (node /= 0 .and. config%probes(index)%at_point) then
+      call status%add(where//': node: give either node or point, not both')
+    else if (node == 0 .and. .not. config%probes(index)%at_point) then
+      call status%add(where//': node: required, or point (where the probe is)')
+    else if (node < 0) then
+      call status%add(where//': node: must be a global node id >= 1')
+    end if
+    config%probes(index)%node = node
+    if (config%probes(index)%at_point) config%probes(index)%point = point
+    ! Fields: names separated by blanks or commas.
+    allocate(list(0))
+    start = 0
+    do k = 1, len_trim(fields) + 1
+      if (k <= len_trim(fields)) then
+        if (fields(k:k) /= ' ' .and. fields(k:k) /= ',') then
+          if (start == 0) start = k
+          cycle
+        end if
+      end if
+      if (start == 0) cycle
+      word = to_lower(fields(start:k - 1))
+      start = 0
+      if (.not. any(PROBE_FIELDS == word)) then
+        call status%add(where//': fields: '''//word//''' is not a probe field (valid: '// &
+            join(PROBE_FIELDS)//')')
+      else if (any(list == word)) then
+        call status%add(where//': fields: '''//word//''' is given twice')
+      else
+        list = [character(len=PROBE_FIELD_LEN) :: list, word]
+      end if
+    end do
+    if (len_trim(fields) == 0) call status%add(where//': fields: required (one or more of: '// &
+        join(PROBE_FIELDS)//')')
+    strength = .false.
+    if (allocated(config%materials)) strength = any(config%materials%strength /= STRENGTH_NONE)
+    if ((any(list == 'stress') .or. any(list == 'plastic_strain')) .and. .not. strength .and. &
+        config%materials_read) call status%add(where//': fields: stress and plastic_strain '// &
+        'need a &material with strength')
+    config%probes(index)%fields = list
+    if (every /= 0 .and. interval /= 0.0_rk) then
+      call status%add(where//': every: give either every (cycles) or interval (time), not both')
+    else if (every < 0) then
+      call status%add(where//': every: must be >= 1 (cycles between rows)')
+    else if (.not. (interval >= 0.0_rk)) then
+      call status%add(where//': interval: must be > 0 (simulated time between rows)')
+    end if
+    if (every == 0 .and. interval == 0.0_rk) every = 1
+    config%probes(index)%every = every
+    config%probes(index)%interval = interval
+  end subroutine read_probe
 
   subroutine read_output(sect, out, status)
     character(len=LINE_LEN), intent(in) :: sect(:)

@@ -4,6 +4,7 @@
 module io_dump
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
+  use core_units, only: unit_of
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
   use io_h5, only: hid_t, h5_create_file, h5_open_file, h5_close_file, h5_write_real_rows, &
@@ -32,6 +33,8 @@ module io_dump
 contains
 
   !> Write the dump file path (and its .xmf sidecar) of the current state.
+  !> units is the run's unit system (&control units): the root attribute
+  !> units, and each field's units attribute from it.
   subroutine dump_write(path, title, units, block_names, mesh, state, info, status)
     character(len=*), intent(in) :: path, title, units, block_names
     type(mesh_t), intent(inout) :: mesh
@@ -74,6 +77,7 @@ contains
     call h5_write_real_rows(file, '/mesh/coordinates', nblock3, mesh%nnode_global, &
         node_first, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    call units_of('/mesh/coordinates', 'length')
     allocate(connectivity(8, nzo), cblock(8, mesh%zone_io%nblock))
     do z = 1, nzo
       do k = 1, 8
@@ -96,34 +100,38 @@ contains
     call h5_write_real_rows(file, '/nodes/velocity', nblock3, mesh%nnode_global, node_first, &
         e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    call units_of('/nodes/velocity', 'velocity')
     call mesh%node_io%to_block(reshape(state%node_mass(1:nno), [1, nno]), nblock1)
     call h5_write_real_vector(file, '/nodes/mass', nblock1(1, :), mesh%nnode_global, &
         node_first, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    call units_of('/nodes/mass', 'mass')
     if (allocated(state%node_contact_gap)) then
       call mesh%node_io%to_block(reshape(state%node_contact_gap(1:nno), [1, nno]), nblock1)
       call h5_write_real_vector(file, '/nodes/contact_gap', nblock1(1, :), mesh%nnode_global, &
           node_first, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
+      call units_of('/nodes/contact_gap', 'length')
     end if
 
     ! Zones.
-    call zone_field('/zones/density', state%zone_density)
-    call zone_field('/zones/specific_internal_energy', state%zone_energy)
-    call zone_field('/zones/pressure', state%zone_pressure)
-    call zone_field('/zones/viscosity', state%zone_viscosity)
-    call zone_field('/zones/sound_speed', state%zone_sound_speed)
-    call zone_field('/zones/volume', state%zone_volume)
-    call zone_field('/zones/mass', state%zone_mass)
+    call zone_field('/zones/density', state%zone_density, 'density')
+    call zone_field('/zones/specific_internal_energy', state%zone_energy, 'specific_energy')
+    call zone_field('/zones/pressure', state%zone_pressure, 'pressure')
+    call zone_field('/zones/viscosity', state%zone_viscosity, 'pressure')
+    call zone_field('/zones/sound_speed', state%zone_sound_speed, 'velocity')
+    call zone_field('/zones/volume', state%zone_volume, 'volume')
+    call zone_field('/zones/mass', state%zone_mass, 'mass')
 
     if (allocated(state%zone_stress)) then
-      call zone_field('/zones/plastic_strain', state%zone_plastic_strain)
+      call zone_field('/zones/plastic_strain', state%zone_plastic_strain, 'dimensionless')
       deallocate(zblock)
       allocate(zblock(6, mesh%zone_io%nblock))
       call mesh%zone_io%to_block(state%zone_stress(:, 1:nzo), zblock)
       call h5_write_real_rows(file, '/zones/deviatoric_stress', zblock, mesh%nzone_global, &
           zone_first, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
+      call units_of('/zones/deviatoric_stress', 'pressure')
       deallocate(zblock)
       allocate(zblock(1, mesh%zone_io%nblock))
     end if
@@ -143,6 +151,12 @@ contains
           zone_first, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
     end if
+
+    ! Energy bookkeeping per zone (the history's per-material columns).
+    if (allocated(state%zone_plastic_work)) call zone_field('/restart/plastic_work', &
+        state%zone_plastic_work, 'energy')
+    if (allocated(state%zone_hourglass_work)) call zone_field('/restart/hourglass_work', &
+        state%zone_hourglass_work, 'energy')
 
     ! Run metadata (differs between runs; never compared).
     call h5_create_group(file, '/run', e, msg)
@@ -180,15 +194,24 @@ contains
 
   contains
 
-    subroutine zone_field(name, field)
+    subroutine zone_field(name, field, quantity)
       character(len=*), intent(in) :: name
       real(rk), intent(in) :: field(:)
+      character(len=*), intent(in) :: quantity !< for its units attribute (core_units)
       zlocal(1, :) = field(1:nzo)
       call mesh%zone_io%to_block(zlocal, zblock(1:1, :))
       call h5_write_real_vector(file, name, zblock(1, :), mesh%nzone_global, zone_first, &
           e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
+      call units_of(name, quantity)
     end subroutine zone_field
+
+    !> The units attribute of a dataset.
+    subroutine units_of(name, quantity)
+      character(len=*), intent(in) :: name, quantity
+      call h5_write_attr_string(file, name, 'units', unit_of(units, quantity), e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end subroutine units_of
 
     logical function agreed()
       integer :: worst
@@ -537,6 +560,11 @@ contains
       call mesh%zone_halo%exchange(zlocal)
       state%zone_hourglass = reshape(zlocal, [3, 4, mesh%nzone])
     end if
+    ! Energy bookkeeping (absent from dumps written before it: zero then).
+    if (allocated(state%zone_plastic_work)) call optional_zone('/restart/plastic_work', &
+        state%zone_plastic_work)
+    if (allocated(state%zone_hourglass_work)) call optional_zone('/restart/hourglass_work', &
+        state%zone_hourglass_work)
     if (.not. agreed()) return
     call h5_close_file(file, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -545,6 +573,20 @@ contains
     call mesh%node_halo%exchange(state%node_velocity)
 
   contains
+
+    subroutine optional_zone(name, field)
+      character(len=*), intent(in) :: name
+      real(rk), intent(inout) :: field(:)
+      logical :: there
+      call h5_path_exists(file, name, there, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      if (e /= 0) return
+      if (there) then
+        call read_zone(name, field)
+      else
+        field = 0.0_rk
+      end if
+    end subroutine optional_zone
 
     subroutine read_zone(name, field)
       character(len=*), intent(in) :: name

@@ -595,6 +595,42 @@ def build_cases():
     c.append(Case("output_status_every_zero",
                   sub("  status_every = 100\n", "  status_every = 0\n"),
                   ["&output: status_every: must be >= 1"]))
+    # --- &probe and &control units (issue 20 items 2 and 4) -------------------------
+    c.append(Case("probe_unknown_field",
+                  append("&probe name = 'p', node = 1, fields = 'velocity, temperature' /\n"),
+                  ["&probe 'p': fields: 'temperature' is not a probe field (valid: velocity"]))
+    c.append(Case("probe_node_out_of_range",
+                  append("&probe name = 'p', node = 45, fields = 'velocity' /\n"),
+                  ["&probe 'p': node: 45 is out of range (the mesh has nodes 1 to 44)"]))
+    c.append(Case("probe_point_outside",
+                  append("&probe name = 'p', point = 2.0, 0.05, 0.05, fields = 'pressure' /\n"),
+                  ["&probe 'p': point: (", "is outside the mesh"]))
+    c.append(Case("probe_node_and_point",
+                  append("&probe name = 'p', node = 1, point = 0.5, 0.05, 0.05, "
+                         "fields = 'pressure' /\n"),
+                  ["&probe 'p': node: give either node or point, not both"]))
+    c.append(Case("probe_every_and_interval",
+                  append("&probe name = 'p', node = 1, fields = 'pressure', every = 2, "
+                         "interval = 0.01 /\n"),
+                  ["&probe 'p': every: give either every (cycles) or interval (time), not both"]))
+    c.append(Case("probe_stress_without_strength",
+                  append("&probe name = 'p', node = 1, fields = 'stress' /\n"),
+                  ["&probe 'p': fields: stress and plastic_strain need a &material with "
+                   "strength"]))
+    c.append(Case("probe_name_twice",
+                  append("&probe name = 'p', node = 1, fields = 'velocity' /\n"
+                         "&probe name = 'p', node = 2, fields = 'velocity' /\n"),
+                  ["&probe 'p': name: given to two probes"]))
+    c.append(Case("control_units_unknown",
+                  sub("  cfl = 0.5\n", "  cfl = 0.5\n  units = 'furlongs'\n"),
+                  ["&control: units: 'furlongs' is not a unit system (valid: cm-g-us-mbar, si, "
+                   "none)"]))
+    c.append(Case("units_none_refuses_library",
+                  chain(sub("  cfl = 0.5\n", "  cfl = 0.5\n  units = 'none'\n"),
+                        sub("name = 'gas', eos = 'ideal_gas', gamma = 1.4",
+                            "name = 'gas', eos = 'mie_gruneisen', library = 'al6061'")),
+                  ["&material(1): library: 'al6061' has data in cm-g-us-mbar; with &control "
+                   "units = 'none' give every property yourself"]))
     # --- the program argument ------------------------------------------------------
     c.append(Case("deck_file_missing", lambda t: t,
                   ["deck: file", "no_such_deck.nml", "does not exist"],
