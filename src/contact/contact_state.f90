@@ -87,7 +87,7 @@ module contact_state
     !> Coulomb friction coefficient (0: frictionless, the friction code is skipped)
     real(rk) :: friction = 0.0_rk
     !> DAM: a second pass with master and slave swapped (contact_enforce)
-    logical :: symmetric = .true.
+    logical :: symmetric = .false.
   end type contact_spec_t
 
   !> Geometry of one surface at x^n, computed once per cycle (in the
