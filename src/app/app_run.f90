@@ -91,14 +91,14 @@ contains
     ! (Nested: Fortran does not short-circuit .and., and config%contacts is
     ! not allocated when the deck could not be read.)
     if (status%ok()) then
-      if (size(config%contacts) > 0) call contact_initial(config%contacts, global, offsets, &
-          status)
+      if (size(config%contacts) > 0) call contact_initial(config%contacts, global, &
+          bc%symmetry_planes, offsets, status)
     end if
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
     if (status%ok()) call probe_setup(config%probes, global, mesh, config%output%directory, &
         config%units, probes, status)
     if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
-        status, offsets)
+        status, offsets, bc%symmetry_planes)
     if (.not. status%ok()) then
       call report(status)
       code = EXIT_INPUT

@@ -61,6 +61,10 @@ module contact_audit
   !> other body is not seen (a zone's worth of penetration is already a
   !> failure of the contact).
   real(rk), parameter :: REACH_SIZES = 3.0_rk
+  !> A free edge of the target lies in a symmetry plane when both its ends
+  !> are within this fraction of the segment size of the plane (nodes on a
+  !> symmetry plane stay on it to round-off).
+  real(rk), parameter :: PLANE_FRACTION = 1.0e-9_rk
   !> Self-contact: a node is inside only where its own normal and the
   !> feature's make more than 120 degrees (cosine below this): two sheets
   !> pressed together face each other (cosine near -1), while a surface that
@@ -230,7 +234,7 @@ contains
   !> order in which a node's candidates are visited depend only on the
   !> surfaces and the node, so every rank finds the same closest point (an
   !> exact tie goes to the first visited).
-  subroutine audit_gaps(x, own, target, self, reach, selected, gap, hit, inward)
+  subroutine audit_gaps(x, own, target, self, reach, selected, gap, hit, inward, planes)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: own, target
     logical, intent(in) :: self
@@ -239,13 +243,20 @@ contains
     real(rk), intent(out) :: gap(:) !< (own%nnode), reach where not selected
     integer, intent(out) :: hit(:) !< (own%nnode)
     real(rk), intent(out) :: inward(:, :) !< (3, own%nnode) unit direction p -> q where inside
+    !> (4, n) symmetry planes of the deck, unit normal and offset (n . x =
+    !> offset): a free edge of the target lying in one is no edge, the
+    !> surface continuing as its mirror image
+    real(rk), intent(in), optional :: planes(:, :)
     real(rk), allocatable :: tsize(:), tsag(:), tn(:, :, :), tc(:, :)
     integer, allocatable :: cell_start(:), cell_list(:), stamp(:), cand(:), ring(:)
     real(rk) :: lo(3), hi(3), cell, p(3), q(3), best_q(3), d2, best_d2, nrm(3), own_n(3), d(3)
     integer :: ncell(3), i, s, k, ncand, best_s, best_k, best_f, f, c1(3), c2(3), ix, iy, iz, &
         j, node, e, m
     logical :: inside
+    integer :: nplane
 
+    nplane = 0
+    if (present(planes)) nplane = size(planes, 2)
     gap = reach
     hit = 0
     inward = 0.0_rk
@@ -410,7 +421,9 @@ contains
         t = target%neighbours(k, s)
         n = tn(:, k, s)
         if (t == 0) then
-          free = .true.
+          ! A free edge, unless it lies in a symmetry plane: then the mirror
+          ! image's triangle is across it, n + R n, along the plane.
+          free = .not. mirrored(target%segments(k, s), target%segments(kk, s), s, n)
         else
           n = n + tn(:, edge_triangle(t, target%segments(kk, s), target%segments(k, s)), t)
         end if
@@ -454,14 +467,19 @@ contains
     end function edge_triangle
 
     !> Angle-weighted normal at a corner node of the target, and whether the
-    !> node is on a free edge.
+    !> node is on a free edge (one not lying in a symmetry plane; with such
+    !> edges only, the mirror images' triangles are added: the normal is
+    !> projected on those planes).
     subroutine vertex_normal(vnode, n, free)
       integer(ik), intent(in) :: vnode
       real(rk), intent(out) :: n(3)
       logical, intent(out) :: free
-      integer :: iv, e1, s1, c, cp, cm
+      integer :: iv, e1, s1, c, cp, cm, j
+      real(rk) :: dummy(3)
+      logical :: on(8)
       n = 0.0_rk
       free = .false.
+      on = .false.
       iv = surface_node_index(target, vnode)
       do e1 = target%node_start(iv), target%node_start(iv + 1) - 1
         s1 = target%node_segments(e1)
@@ -473,9 +491,42 @@ contains
             tn(:, c, s1)
         n = n + corner_angle(x(:, vnode), tc(:, s1), x(:, target%segments(cm, s1))) * &
             tn(:, cm, s1)
-        if (target%neighbours(c, s1) == 0 .or. target%neighbours(cm, s1) == 0) free = .true.
+        dummy = 0.0_rk
+        if (target%neighbours(c, s1) == 0) then
+          if (.not. mirrored(vnode, target%segments(cp, s1), s1, dummy, on)) free = .true.
+        end if
+        if (target%neighbours(cm, s1) == 0) then
+          if (.not. mirrored(target%segments(cm, s1), vnode, s1, dummy, on)) free = .true.
+        end if
+      end do
+      if (free) return
+      do j = 1, min(size(on), nplane)
+        if (on(j)) n = n - dot_product(n, planes(1:3, j)) * planes(1:3, j)
       end do
     end subroutine vertex_normal
+
+    !> Whether the edge (a, b) of segment s lies in a symmetry plane (both
+    !> ends within PLANE_FRACTION of the segment size of it); if so n is
+    !> projected on that plane, and the plane is marked in on.
+    logical function mirrored(a, b, s, n, on) result(yes)
+      integer(ik), intent(in) :: a, b
+      integer, intent(in) :: s
+      real(rk), intent(inout) :: n(3)
+      logical, intent(inout), optional :: on(:)
+      integer :: j
+      real(rk) :: tol
+      yes = .false.
+      tol = PLANE_FRACTION * tsize(s)
+      do j = 1, nplane
+        if (abs(dot_product(planes(1:3, j), x(:, a)) - planes(4, j)) > tol) cycle
+        if (abs(dot_product(planes(1:3, j), x(:, b)) - planes(4, j)) > tol) cycle
+        yes = .true.
+        n = n - dot_product(n, planes(1:3, j)) * planes(1:3, j)
+        if (present(on)) then
+          if (j <= size(on)) on(j) = .true.
+        end if
+      end do
+    end function mirrored
 
     !> Area-weighted unit normal of own node i.
     function node_normal(surf, i) result(n)

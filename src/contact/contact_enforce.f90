@@ -70,7 +70,7 @@ contains
 
   !> Build the contact surfaces in contact-index space, the owned-node map and
   !> the nodal masses. Problems go to status (group, key, reason).
-  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets)
+  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets, planes)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
@@ -79,6 +79,8 @@ contains
     type(status_t), intent(inout) :: status
     !> initial penetration kept per surface node (contact_initial); none: zero
     type(initial_offsets_t), intent(in), optional :: offsets(:)
+    !> (4, n) the deck's symmetry planes (unit normal, offset) for the audit
+    real(rk), intent(in), optional :: planes(:, :)
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
     integer(i8), allocatable :: all(:)
     real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
@@ -86,6 +88,11 @@ contains
     character(len=16) :: where
     character(len=SURFACE_LEN) :: master_set, slave_set
 
+    if (present(planes)) then
+      ct%planes = planes
+    else
+      allocate(ct%planes(4, 0))
+    end if
     ct%ndeck = size(specs)
     ct%npair = ct%ndeck + count(specs%symmetric .and. specs%method == 'dam' .and. &
         specs%surface_a /= specs%surface_b)

@@ -43,13 +43,14 @@ contains
 
   !> The audit of one side: gaps of the selected nodes of `own` against
   !> `other`, penetration beyond the offsets, and each node's tolerance.
-  subroutine audit_side(x, own, other, self, reach, tol_fixed, offset, selected, side)
+  subroutine audit_side(x, own, other, self, reach, tol_fixed, offset, selected, planes, side)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: own, other
     logical, intent(in) :: self
     real(rk), intent(in) :: reach, tol_fixed
     real(rk), intent(in) :: offset(:) !< (own%nnode)
     logical, intent(in) :: selected(:) !< (own%nnode)
+    real(rk), intent(in) :: planes(:, :) !< (4, n) symmetry planes (contact_audit)
     type(side_t), intent(out) :: side
     real(rk), allocatable :: osz(:), osag(:), otn(:, :, :), otc(:, :)
     real(rk), allocatable :: tsz(:), tsag(:), ttn(:, :, :), ttc(:, :)
@@ -57,7 +58,8 @@ contains
     integer :: i, e, n
     n = own%nnode
     allocate(side%gap(n), side%pen(n), side%tol(n), side%inward(3, n), side%hit(n))
-    call audit_gaps(x, own, other, self, reach, selected, side%gap, side%hit, side%inward)
+    call audit_gaps(x, own, other, self, reach, selected, side%gap, side%hit, side%inward, &
+        planes)
     allocate(osz(own%nseg), osag(own%nseg), otn(3, 4, own%nseg), otc(3, own%nseg))
     call segment_metrics(x, own, osz, osag, otn, otc)
     allocate(tsz(other%nseg), tsag(other%nseg), ttn(3, 4, other%nseg), ttc(3, other%nseg))
@@ -88,9 +90,10 @@ contains
   !> the other surface, 'ignore' keeps every penetration as an offset.
   !> Penetration within the tolerance is an offset under every option.
   !> Collective only through nothing: every rank computes the same.
-  subroutine contact_initial(specs, global, offsets, status)
+  subroutine contact_initial(specs, global, planes, offsets, status)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(inout) :: global
+    real(rk), intent(in) :: planes(:, :) !< (4, n) the deck's symmetry planes
     type(initial_offsets_t), allocatable, intent(out) :: offsets(:)
     type(status_t), intent(inout) :: status
     type(contact_surface_t) :: sa, sb
@@ -183,9 +186,9 @@ contains
       zero_a = 0.0_rk
       zero_b = 0.0_rk
       call audit_side(global%coordinates, sa, sb, self, reach, specs(k)%penetration_tolerance, &
-          zero_a, [(.true., i = 1, sa%nnode)], ra)
+          zero_a, [(.true., i = 1, sa%nnode)], planes, ra)
       if (.not. self) call audit_side(global%coordinates, sb, sa, .false., reach, &
-          specs(k)%penetration_tolerance, zero_b, [(.true., i = 1, sb%nnode)], rb)
+          specs(k)%penetration_tolerance, zero_b, [(.true., i = 1, sb%nnode)], planes, rb)
     end subroutine both_sides
 
     !> Penetration within the tolerance: an offset under every option.
@@ -288,9 +291,9 @@ contains
           sel_b(i) = ct%own_of(p%all_b%nodes(i)) > 0
         end do
         call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
-            p%spec%penetration_tolerance, p%offset(p%all_a%nodes), sel_a, ra)
+            p%spec%penetration_tolerance, p%offset(p%all_a%nodes), sel_a, ct%planes, ra)
         if (.not. p%self) call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
-            p%spec%penetration_tolerance, p%offset(p%all_b%nodes), sel_b, rb)
+            p%spec%penetration_tolerance, p%offset(p%all_b%nodes), sel_b, ct%planes, rb)
         worst = 0.0_rk
         sums = 0.0_rk
         unheld = 0

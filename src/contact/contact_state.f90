@@ -172,6 +172,8 @@ module contact_state
   type, public :: contact_t
     integer :: npair = 0 !< interfaces: the deck's, then DAM's reverse passes
     integer :: ndeck = 0 !< the deck's interfaces
+    !> (4, n) the deck's symmetry planes (unit normal, offset), for the audit
+    real(rk), allocatable :: planes(:, :)
     type(interface_t), allocatable :: pairs(:)
     ! Every contact node (static, on every rank).
     integer :: nall = 0 !< contact nodes of all surfaces

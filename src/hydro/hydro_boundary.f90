@@ -46,6 +46,10 @@ module hydro_boundary
     integer, allocatable :: pnode_start(:), pnode_list(:) !< CSR of 4 (face-1) + corner
     real(rk), allocatable :: pnode_force(:, :) !< (3, npnode) external force of the stage
     logical, allocatable :: face_symmetric(:, :) !< (6, nzone) face lies on a symmetry plane
+    !> (4, n) the symmetry planes at t = 0, unit normal and offset (n . x =
+    !> offset), the same on every rank (the contact audit mirrors surfaces
+    !> that end on them)
+    real(rk), allocatable :: symmetry_planes(:, :)
     integer :: nwall = 0 !< owned nodes of rigid-wall sets
     integer, allocatable :: wall_node(:) !< their local indices
     real(rk), allocatable :: wall_normal(:, :) !< (3, nwall) unit normal pointing into the wall
@@ -117,6 +121,17 @@ contains
       end do
     end do
     if (.not. status%ok()) return
+    allocate(bc%symmetry_planes(4, count(specs%kind == BC_SYMMETRY)))
+    j = 0
+    do ib = 1, size(specs)
+      if (specs(ib)%kind /= BC_SYMMETRY) cycle
+      s = global%find_set(specs(ib)%set)
+      f = global%set_start(s)
+      p = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, global%set_face(f)), &
+          global%set_zone(f)))
+      j = j + 1
+      bc%symmetry_planes(:, j) = [normal(:, ib), dot_product(normal(:, ib), p(:, 1))]
+    end do
 
     ! Kinematic constraints: velocity directions first, then symmetry normals.
     allocate(dir(3, 3, nowned), target(3, nowned), ndir(nowned))

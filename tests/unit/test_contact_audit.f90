@@ -2,7 +2,8 @@
 !> cases, then the signed distance of the audit against brute force on
 !> closed surfaces (every triangle tried; inside from the winding number,
 !> the sum of the triangles' solid angles over 4 pi), the free-boundary and
-!> self-contact rules, and the sagitta estimate on a sphere.
+!> self-contact rules, a hemisphere ending on a symmetry plane against the
+!> whole sphere, and the sagitta estimate on a sphere.
 program test_contact_audit
   use core_kinds, only: rk, ik, i8
   use check, only: check_true, check_close, check_summary
@@ -14,6 +15,7 @@ program test_contact_audit
   call kernel_cases()
   call closed_surface(.false.)
   call closed_surface(.true.)
+  call mirrored_hemisphere()
   call open_plate()
   call self_sheets()
   call sphere_sagitta()
@@ -196,6 +198,87 @@ contains
     call check_true('audit '//trim(label)//': probes inside and outside', ninside > 100 &
         .and. ninside < probes%nnode - 100)
   end subroutine closed_surface
+
+  !> The upper half (z >= 0.5) of the cubed sphere, which ends on the plane
+  !> z = 0.5 (the lattice's middle row maps onto it), audited with that plane
+  !> as a symmetry plane: for probes with z >= 0.5 the distance and the sign
+  !> must be those of the whole sphere (its mirror image), by brute force.
+  !> Without the plane the audit calls probes beside the rim outside (the
+  !> free-boundary rule), so the same comparison must then find wrong signs:
+  !> the case tests the mirroring.
+  subroutine mirrored_hemisphere()
+    real(rk), allocatable :: x(:, :), xq(:, :), gap(:), inward(:, :)
+    integer, allocatable :: hit(:)
+    type(contact_surface_t) :: whole, half, probes
+    integer(ik), allocatable :: seg(:, :), hseg(:, :)
+    integer(i8), allocatable :: sid(:), hid(:)
+    integer :: npt, i, nn, s, nh, bad_sign(2), bad_dist(2), ninside, pass
+    real(rk) :: r(3), dist, winding, reach, plane(4, 1)
+    call cube_surface(6, .true., x, whole)
+    ! A waist at the plane, mirror-symmetric about it: x and y scaled about
+    ! the axis by 1 + |z - 0.5|, so the surface meets the plane at an angle
+    ! (45 degrees for the equator's radius 0.5) and nodes on the plane near
+    ! the rim have the rim as nearest feature, sideways of its facets.
+    do i = 1, size(x, 2)
+      x(1:2, i) = 0.5_rk + (x(1:2, i) - 0.5_rk) * (1.0_rk + abs(x(3, i) - 0.5_rk))
+    end do
+    allocate(hseg(4, whole%nseg), hid(whole%nseg))
+    nh = 0
+    do s = 1, whole%nseg
+      if (any(x(3, whole%segments(:, s)) < 0.5_rk - 1.0e-12_rk)) cycle
+      nh = nh + 1
+      hseg(:, nh) = whole%segments(:, s)
+      hid(nh) = int(nh, i8)
+    end do
+    call surface_from_segments(hseg(:, :nh), hid(:nh), x, half)
+    nn = size(x, 2)
+    npt = 2000
+    allocate(xq(3, nn + 4 * npt), seg(4, npt), sid(npt))
+    xq(:, :nn) = x
+    do i = 1, 4 * npt
+      r = [frac(0.7548776662466927_rk * i), frac(0.5698402909980532_rk * i), &
+          frac(0.3141592653589793_rk * i + 0.1_rk)]
+      ! Every other probe on the plane, as the nodes on a symmetry plane are.
+      if (mod(i, 2) == 0) r(3) = 0.0_rk
+      xq(:, nn + i) = [-0.2_rk + 1.4_rk * r(1), -0.2_rk + 1.4_rk * r(2), 0.5_rk + 0.7_rk * r(3)]
+    end do
+    do i = 1, npt
+      seg(:, i) = int(nn + [4 * i - 3, 4 * i - 2, 4 * i - 1, 4 * i], ik)
+      sid(i) = int(i, i8)
+    end do
+    call surface_from_segments(seg, sid, xq, probes)
+    allocate(gap(probes%nnode), hit(probes%nnode), inward(3, probes%nnode))
+    reach = 0.5_rk
+    plane(:, 1) = [0.0_rk, 0.0_rk, 1.0_rk, 0.5_rk]
+    bad_sign = 0
+    bad_dist = 0
+    ninside = 0
+    do pass = 1, 2
+      if (pass == 1) then
+        call audit_gaps(xq, probes, half, .false., reach, [(.true., i = 1, probes%nnode)], &
+            gap, hit, inward, plane)
+      else
+        call audit_gaps(xq, probes, half, .false., reach, [(.true., i = 1, probes%nnode)], &
+            gap, hit, inward)
+      end if
+      do i = 1, probes%nnode
+        call brute(xq, whole, xq(:, probes%nodes(i)), dist, winding)
+        if (dist >= reach) cycle
+        if (abs(abs(gap(i)) - dist) > 1.0e-14_rk) bad_dist(pass) = bad_dist(pass) + 1
+        if (pass == 1 .and. abs(winding) > 0.5_rk) ninside = ninside + 1
+        if (dist > 1.0e-12_rk .and. (gap(i) < 0.0_rk) .neqv. (abs(winding) > 0.5_rk)) &
+            bad_sign(pass) = bad_sign(pass) + 1
+      end do
+    end do
+    call check_true('hemisphere on a symmetry plane: distance = whole sphere''s', &
+        bad_dist(1) == 0)
+    call check_true('hemisphere on a symmetry plane: inside = whole sphere''s winding number', &
+        bad_sign(1) == 0)
+    call check_true('hemisphere on a symmetry plane: probes inside and outside', &
+        ninside > 100 .and. ninside < probes%nnode - 100)
+    call check_true('hemisphere without the plane: the rim''s probes get the wrong sign', &
+        bad_sign(2) > 0)
+  end subroutine mirrored_hemisphere
 
   pure real(rk) function frac(v)
     real(rk), intent(in) :: v
