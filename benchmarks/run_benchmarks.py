@@ -851,7 +851,8 @@ def render(data, out_path, img_dir):
     # problem runs (tools/verify_contact.py); their hand-run sections are kept
     # in their own files so that re-rendering this document does not drop them.
     # The parallel contact scaling section is written by benchmarks/scaling.py.
-    for name in ("search_section.md", "contact_section.md", "scaling_section.md"):
+    for name in ("lulesh_section.md", "cycle_section.md", "search_section.md",
+                 "contact_section.md", "scaling_section.md"):
         extra = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
         if os.path.exists(extra):
             with open(extra, encoding="utf-8") as handle:
