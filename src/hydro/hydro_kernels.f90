@@ -119,7 +119,7 @@ contains
     real(rk), intent(inout) :: hg_new(:, :, :) !< stiffness state at t^n+1
     real(rk), intent(inout) :: force(:, :, :)
     real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
-    real(rk) :: ptot, scale, rvol, f(3)
+    real(rk) :: ptot, scale, rvol, f(3), bk(3)
     integer :: z, k, m, node
     logical :: with_hourglass
     with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
@@ -149,13 +149,19 @@ contains
       hx(:, 4) = -xz(:, 1) + xz(:, 2) - xz(:, 3) + xz(:, 4) + xz(:, 5) - xz(:, 6) + xz(:, 7) &
           - xz(:, 8)
       rvol = 1.0_rk / volume(z)
+      ! Node by node (each rate(:, m) still sums over k in order: bitwise the
+      ! loop over m then k).
       rate = 0.0_rk
-      do m = 1, 4
-        do k = 1, 8
-          gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * b(1, k, z) &
-              + hx(2, m) * b(2, k, z) + hx(3, m) * b(3, k, z))
-          rate(:, m) = rate(:, m) + gam(k, m) * vz(:, k)
+      do k = 1, 8
+        bk = b(:, k, z)
+        do m = 1, 4
+          gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * bk(1) + hx(2, m) * bk(2) &
+              + hx(3, m) * bk(3))
         end do
+        rate(:, 1) = rate(:, 1) + gam(k, 1) * vz(:, k)
+        rate(:, 2) = rate(:, 2) + gam(k, 2) * vz(:, k)
+        rate(:, 3) = rate(:, 3) + gam(k, 3) * vz(:, k)
+        rate(:, 4) = rate(:, 4) + gam(k, 4) * vz(:, k)
       end do
       if (hourglass == HOURGLASS_VISCOUS) then
         scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)
