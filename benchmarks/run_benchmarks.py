@@ -34,6 +34,11 @@ Sections of the report:
    each option over the defaults at equal L1.
 3. Provenance: the command, date, binary commit, machine.
 
+Sections kept in their own files are appended: lulesh_section.md (written by
+benchmarks/lulesh_sedov.py, the LULESH Sedov problem of issue 18, which then
+calls this script with --render-only), cycle_section.md (hand-run profile and
+speed of the cycle), search_section.md, contact_section.md, scaling_section.md.
+
 --quick drops 60^3 from the speed runs and 40^3 from the Sedov
 work-precision runs.  Raw results go to --json; --render-only rewrites the
 report and plots from that file without running anything.
