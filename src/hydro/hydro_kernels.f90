@@ -57,16 +57,20 @@ contains
       end do
       divergence(z) = dvdt / vol
       if (.not. present(gradient)) cycle
-      dx = 0.0_rk
-      dv = 0.0_rk
-      do k = 1, 8
-        dx(:, 1) = dx(:, 1) + SIGN_XI(k) * xz(:, k)
-        dx(:, 2) = dx(:, 2) + SIGN_ETA(k) * xz(:, k)
-        dx(:, 3) = dx(:, 3) + SIGN_ZETA(k) * xz(:, k)
-        dv(:, 1) = dv(:, 1) + SIGN_XI(k) * vz(:, k)
-        dv(:, 2) = dv(:, 2) + SIGN_ETA(k) * vz(:, k)
-        dv(:, 3) = dv(:, 3) + SIGN_ZETA(k) * vz(:, k)
-      end do
+      ! Signed sums with the signs of SIGN_XI, SIGN_ETA, SIGN_ZETA written out (the
+      ! same additions in the same order as a loop over k from zero: bitwise equal).
+      dx(:, 1) = -xz(:, 1) + xz(:, 2) + xz(:, 3) - xz(:, 4) - xz(:, 5) + xz(:, 6) &
+          + xz(:, 7) - xz(:, 8)
+      dx(:, 2) = -xz(:, 1) - xz(:, 2) + xz(:, 3) + xz(:, 4) - xz(:, 5) - xz(:, 6) &
+          + xz(:, 7) + xz(:, 8)
+      dx(:, 3) = -xz(:, 1) - xz(:, 2) - xz(:, 3) - xz(:, 4) + xz(:, 5) + xz(:, 6) &
+          + xz(:, 7) + xz(:, 8)
+      dv(:, 1) = -vz(:, 1) + vz(:, 2) + vz(:, 3) - vz(:, 4) - vz(:, 5) + vz(:, 6) &
+          + vz(:, 7) - vz(:, 8)
+      dv(:, 2) = -vz(:, 1) - vz(:, 2) + vz(:, 3) + vz(:, 4) - vz(:, 5) - vz(:, 6) &
+          + vz(:, 7) + vz(:, 8)
+      dv(:, 3) = -vz(:, 1) - vz(:, 2) - vz(:, 3) - vz(:, 4) + vz(:, 5) + vz(:, 6) &
+          + vz(:, 7) + vz(:, 8)
       do d = 1, 3
         l2 = dx(1, d)**2 + dx(2, d)**2 + dx(3, d)**2
         if (l2 > 0.0_rk) then
@@ -119,7 +123,7 @@ contains
     real(rk), intent(inout) :: force(:, :, :)
     real(rk), intent(inout), optional :: hg_work(:)
     real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
-    real(rk) :: ptot, scale, rvol, f(3)
+    real(rk) :: ptot, scale, rvol, f(3), bk(3)
     integer :: z, k, m, node
     logical :: with_hourglass, book
     with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
@@ -139,20 +143,30 @@ contains
         vz(:, k) = v(:, node)
       end do
       ! gamma_m = h_m - (h_m . x_j) b_j / V  (orthogonal to linear fields)
-      hx = 0.0_rk
-      do k = 1, 8
-        do m = 1, 4
-          hx(:, m) = hx(:, m) + HOURGLASS_BASE(k, m) * xz(:, k)
-        end do
-      end do
+      ! hx_m = sum_k h_km x_k with the signs of HOURGLASS_BASE written out (the
+      ! same additions in the same order as the loop over k: bitwise equal).
+      hx(:, 1) = xz(:, 1) - xz(:, 2) + xz(:, 3) - xz(:, 4) + xz(:, 5) - xz(:, 6) + xz(:, 7) &
+          - xz(:, 8)
+      hx(:, 2) = xz(:, 1) + xz(:, 2) - xz(:, 3) - xz(:, 4) - xz(:, 5) - xz(:, 6) + xz(:, 7) &
+          + xz(:, 8)
+      hx(:, 3) = xz(:, 1) - xz(:, 2) - xz(:, 3) + xz(:, 4) - xz(:, 5) + xz(:, 6) + xz(:, 7) &
+          - xz(:, 8)
+      hx(:, 4) = -xz(:, 1) + xz(:, 2) - xz(:, 3) + xz(:, 4) + xz(:, 5) - xz(:, 6) + xz(:, 7) &
+          - xz(:, 8)
       rvol = 1.0_rk / volume(z)
+      ! Node by node (each rate(:, m) still sums over k in order: bitwise the
+      ! loop over m then k).
       rate = 0.0_rk
-      do m = 1, 4
-        do k = 1, 8
-          gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * b(1, k, z) &
-              + hx(2, m) * b(2, k, z) + hx(3, m) * b(3, k, z))
-          rate(:, m) = rate(:, m) + gam(k, m) * vz(:, k)
+      do k = 1, 8
+        bk = b(:, k, z)
+        do m = 1, 4
+          gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * bk(1) + hx(2, m) * bk(2) &
+              + hx(3, m) * bk(3))
         end do
+        rate(:, 1) = rate(:, 1) + gam(k, 1) * vz(:, k)
+        rate(:, 2) = rate(:, 2) + gam(k, 2) * vz(:, k)
+        rate(:, 3) = rate(:, 3) + gam(k, 3) * vz(:, k)
+        rate(:, 4) = rate(:, 4) + gam(k, 4) * vz(:, k)
       end do
       if (hourglass == HOURGLASS_VISCOUS) then
         scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)

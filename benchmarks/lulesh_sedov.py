@@ -1,0 +1,415 @@
+#!/usr/bin/python3
+"""Work-precision of impact3d on LULESH 2.0's own Sedov problem (issue 18).
+
+Usage:
+    /usr/bin/python3 benchmarks/lulesh_sedov.py [--exe build/impact3d]
+        [--sizes 15 20 30 45] [--repeats N] [--lulesh /tmp/lulesh/lulesh2.0]
+        [--lulesh-src /work/.mirror/LLNL+LULESH/repo] [--no-lulesh]
+        [--hydro 'key = value, ...' --label NAME] [--render-only]
+
+Runs problems/sedov_lulesh/sedov_lulesh_{s}.nml (octant [0, 1.125]^3, s^3
+zones, gamma = 5/3, rho0 = 1, e = 0, E0 = 4935.9325 over the full sphere,
+t = 0.01, exact shock radius 1.0000013) on 1 rank and measures, on the final
+dump, exactly as the issue defines them:
+
+* L1(rho) = sum |rho_i - rho_exact(r_i)| V_i / sum V_i over zones with
+  centroid radius r_i < 1.1; the centroid is the mean of the zone's 8 final
+  node positions, V_i the final volume; rho_exact the Kamm-Timmes solution
+  (tools/exact_sedov.py).
+* shock radius: zones binned by centroid radius (dr = 0.01), volume-weighted
+  mean density per bin; going outward from the peak bin, the first crossing
+  of (1 + peak)/2, interpolated linearly between bin centres.
+* loop time: T - D of impact3d's closing line `done, N cycles, T s (D s of
+  it in dumps)`; median of 5 runs (3 at s >= 30, unless --repeats).
+
+LULESH: when an executable is found (--lulesh, default /tmp/lulesh/lulesh2.0)
+or can be built from a LULESH source tree outside this repository
+(--lulesh-src; g++ -O3, serial: -DUSE_MPI=0, no OpenMP), it is run as
+`lulesh2.0 -s S -r 1 -c 0` (it stops at its own t_end = 1e-2) interleaved
+with impact3d, and its `Elapsed time` is the loop time (median as above).
+LULESH writes no field without its VisIt/Silo option, so its L1 and shock
+radius are the issue's published values (they are deterministic; only the
+timing is machine-dependent).  Without LULESH the issue's published points
+(times from the machine of the issue) are the reference curve.
+
+Writes benchmarks/lulesh_results.json (raw), benchmarks/lulesh_section.md
+(the section, included by run_benchmarks.py) and
+docs/img/bench_lulesh_sedov.png, then re-renders docs/benchmarks.md with
+`run_benchmarks.py --render-only` (one command regenerates everything).
+--render-only rewrites the section and the plot from the json.
+"""
+import argparse
+import datetime
+import json
+import math
+import os
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+import dump as dumplib  # noqa: E402
+from exact_sedov import Sedov  # noqa: E402
+
+GAMMA = 5.0 / 3.0
+E0 = 4935.9325
+RHO0 = 1.0
+T_END = 0.01
+R_MAX = 1.1
+BIN = 0.01
+SIZES = [15, 20, 30, 45]
+# The issue's published LULESH points: s -> (loop s, L1, shock r).
+LULESH_PUBLISHED = {15: (0.41, 0.153, 0.992), 20: (1.40, 0.164, 0.984),
+                    30: (8.0, 0.256, 0.974), 45: (45.0, 0.326, 0.965)}
+# The issue's impact3d points before the work of issue 18 (same machine as LULESH's).
+IMPACT3D_ISSUE = {15: (0.42, 0.308, 1.029), 20: (1.20, 0.269, 1.021),
+                  30: (5.5, 0.202, 1.017), 45: (29.4, 0.145, 1.012)}
+DONE_RE = re.compile(r"done, (\d+) cycles,\s+(\S+) s \(\s*(\S+) s of it in dumps\)")
+ELAPSED_RE = re.compile(r"Elapsed time\s*=\s*(\S+)")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+JSON = os.path.join(HERE, "lulesh_results.json")
+SECTION = os.path.join(HERE, "lulesh_section.md")
+PNG = os.path.join(ROOT, "docs", "img", "bench_lulesh_sedov.png")
+
+
+def log(text):
+    print(text, flush=True)
+
+
+def measure(path):
+    """L1(rho) and binned shock radius of a final dump (the issue's definitions)."""
+    data = dumplib.load(path)
+    r = dumplib.radius(dumplib.zone_centroids(data))
+    rho = np.asarray(data["density"], dtype=float)
+    vol = np.asarray(data["volume"], dtype=float)
+    t = dumplib.problem_time(data)
+    exact = Sedov(GAMMA).solution(r, t, E0, RHO0)[0]
+    inside = r < R_MAX
+    l1 = float(np.sum(np.abs(rho[inside] - exact[inside]) * vol[inside]) / np.sum(vol[inside]))
+    idx = np.floor(r / BIN).astype(int)
+    nbin = idx.max() + 1
+    vsum = np.bincount(idx, weights=vol, minlength=nbin)
+    msum = np.bincount(idx, weights=rho * vol, minlength=nbin)
+    used = vsum > 0.0
+    centre = (np.arange(nbin) + 0.5) * BIN
+    rc, rb = centre[used], msum[used] / vsum[used]
+    peak = int(np.argmax(rb))
+    level = 0.5 * (1.0 + rb[peak])
+    shock = math.nan
+    for k in range(peak, len(rb) - 1):
+        if rb[k] >= level > rb[k + 1]:
+            shock = rc[k] + (level - rb[k]) * (rc[k + 1] - rc[k]) / (rb[k + 1] - rb[k])
+            break
+    return {"L1": l1, "shock_r": float(shock), "time": t, "peak_bin_rho": float(rb[peak])}
+
+
+def run_impact3d(exe, deck, hydro=""):
+    """One 1-rank run: cycles, loop s, peak RSS kB, L1, shock radius."""
+    with tempfile.TemporaryDirectory(prefix="impact3d_lulesh_") as wd:
+        with open(deck, encoding="utf-8") as handle:
+            text = handle.read()
+        if hydro:
+            text += "&hydro %s /\n" % hydro
+        with open(os.path.join(wd, "deck.nml"), "w", encoding="utf-8") as handle:
+            handle.write(text)
+        wrapper = ("import resource, subprocess, sys\n"
+                   "r = subprocess.run(sys.argv[1:])\n"
+                   "sys.stderr.write('\\nMAXRSS_KB %d\\n' % "
+                   "resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
+                   "sys.exit(r.returncode)\n")
+        proc = subprocess.run([sys.executable, "-c", wrapper, exe, "deck.nml"], cwd=wd,
+                              env=ENV, capture_output=True, text=True)
+        done = DONE_RE.search(proc.stdout)
+        if proc.returncode != 0 or not done:
+            raise RuntimeError("impact3d failed on %s: %s" % (deck, proc.stdout[-500:]
+                                                              + proc.stderr[-500:]))
+        rss = re.search(r"MAXRSS_KB (\d+)", proc.stderr)
+        dumps = sorted(n for n in os.listdir(wd) if re.fullmatch(r"dump_\d+\.h5", n))
+        out = {"cycles": int(done.group(1)),
+               "loop": float(done.group(2)) - float(done.group(3)),
+               "rss_kb": int(rss.group(1)) if rss else None}
+        out.update(measure(os.path.join(wd, dumps[-1])))
+        return out
+
+
+def find_lulesh(path, src):
+    """The LULESH executable: path if it exists, else built from src into path's folder."""
+    if path and os.access(path, os.X_OK):
+        return path
+    if not src or not os.path.exists(src):
+        return None
+    build = os.path.dirname(path) if path else tempfile.mkdtemp(prefix="lulesh_")
+    os.makedirs(build, exist_ok=True)
+    tree = os.path.join(build, "src")
+    if not os.path.exists(os.path.join(tree, "lulesh.cc")):
+        if os.path.exists(os.path.join(src, "lulesh.cc")):
+            tree = src
+        else:  # a bare git repository (the mirror): check it out outside ours
+            subprocess.run(["git", "clone", "-q", src, tree], check=True)
+    sources = [os.path.join(tree, n) for n in ("lulesh.cc", "lulesh-comm.cc", "lulesh-viz.cc",
+                                               "lulesh-util.cc", "lulesh-init.cc")]
+    exe = path or os.path.join(build, "lulesh2.0")
+    log("building LULESH: g++ -O3 -DUSE_MPI=0 (serial) -> %s" % exe)
+    subprocess.run(["g++", "-O3", "-DUSE_MPI=0", "-o", exe] + sources, check=True)
+    return exe
+
+
+def run_lulesh(exe, s):
+    proc = subprocess.run([exe, "-s", str(s), "-r", "1", "-c", "0"], capture_output=True,
+                          text=True, check=True)
+    m = ELAPSED_RE.search(proc.stdout)
+    cycles = re.search(r"Iteration count\s*=\s*(\d+)", proc.stdout)
+    return {"loop": float(m.group(1)), "cycles": int(cycles.group(1)) if cycles else None}
+
+
+def loglog_at(points, x):
+    """log-log interpolation of y(x) through points [(x, y)] sorted by x.
+
+    Returns (y, extrapolated): outside the range, the end segment is extended.
+    """
+    pts = sorted(points)
+    if len(pts) < 2:
+        return math.nan, True
+    lx = math.log(x)
+    k = 0
+    while k < len(pts) - 2 and lx > math.log(pts[k + 1][0]):
+        k += 1
+    (x0, y0), (x1, y1) = pts[k], pts[k + 1]
+    slope = (math.log(y1) - math.log(y0)) / (math.log(x1) - math.log(x0))
+    y = math.exp(math.log(y0) + slope * (lx - math.log(x0)))
+    return y, not (pts[0][0] <= x <= pts[-1][0])
+
+
+def render(data):
+    lines = []
+    add = lines.append
+    meta = data["meta"]
+    add("## LULESH Sedov problem (work-precision against LULESH 2.0)")
+    add("")
+    add("LULESH 2.0's own Sedov problem (issue 18): octant [0, 1.125]^3 with s^3 zones, "
+        "gamma = 5/3, rho0 = 1, e = 0, E0 = 4935.9325 over the full sphere (616.9915625 in "
+        "the origin zone), symmetry planes at x, y, z = 0, free faces elsewhere, t = 0.01 "
+        "(exact shock radius 1.0000013). Decks `problems/sedov_lulesh/sedov_lulesh_{15,20,"
+        "30,45}.nml`, every other setting at its default. Regenerate with "
+        "`/usr/bin/python3 benchmarks/lulesh_sedov.py --exe build/impact3d` (it re-renders "
+        "this whole document).")
+    add("")
+    add("* L1(rho) = sum |rho_i - rho_exact(r_i)| V_i / sum V_i over zones with centroid "
+        "radius < 1.1 (centroid = mean of the 8 final node positions, V_i the final "
+        "volume; exact solution tools/exact_sedov.py). Shock radius: zones binned by "
+        "centroid radius (dr = 0.01), volume-weighted mean density per bin, first crossing "
+        "of (1 + peak)/2 outward from the peak bin, interpolated between bin centres.")
+    add("* Loop time: impact3d's `done, N cycles, T s (D s of it in dumps)` gives T - D; "
+        "LULESH's `Elapsed time`. 1 rank / 1 core, median of %s runs, the two codes "
+        "interleaved run by run." % meta["repeats_text"])
+    lul = data.get("lulesh")
+    if lul:
+        add("* LULESH: %s, built `g++ -O3 -DUSE_MPI=0` (serial, no OpenMP, default malloc), "
+            "run `-s S -r 1 -c 0`; timed on this machine in the same session. LULESH writes "
+            "no field without its Silo option, so its L1 and shock radius are the issue's "
+            "published values (deterministic); only its times are measured here."
+            % meta.get("lulesh_desc", "LLNL/LULESH"))
+    else:
+        add("* LULESH was not available: its points are the issue's published ones "
+            "(times from the issue's machine, not this one).")
+    add("* Machine: %s; load average %s at the start, %s at the end (the machine is "
+        "shared: timings are noisy, the L1 and shock radius are exact). Date %s, impact3d "
+        "commit %s." % (meta.get("cpu", "?"), meta.get("load_start"), meta.get("load_end"),
+                        meta.get("date"), meta.get("commit")))
+    add("")
+    for label, rows in data["impact3d"].items():
+        add("### impact3d, %s" % label)
+        add("")
+        add("| s | cycles | loop s (median) | runs | ns/zone-cycle | L1(rho) | shock r "
+            "(binned) | peak bin rho | peak RSS MB |")
+        add("|---|---|---|---|---|---|---|---|---|")
+        for r in rows:
+            loop = statistics.median(r["loops"])
+            add("| %d | %d | %.3f | %s | %.0f | %.4f | %.4f | %.3f | %s |"
+                % (r["s"], r["cycles"], loop, ", ".join("%.3f" % v for v in r["loops"]),
+                   loop / (r["s"] ** 3 * r["cycles"]) * 1e9, r["L1"], r["shock_r"],
+                   r["peak_bin_rho"], "%.1f" % (r["rss_kb"] / 1024.0) if r["rss_kb"] else "-"))
+        add("")
+    add("### LULESH")
+    add("")
+    add("| s | LULESH loop s, this machine (median) | runs | LULESH loop s, issue | "
+        "L1(rho) (issue) | shock r (issue) |")
+    add("|---|---|---|---|---|---|")
+    for s in SIZES:
+        pub = LULESH_PUBLISHED[s]
+        mine = (lul or {}).get(str(s))
+        add("| %d | %s | %s | %.2f | %.3f | %.3f |"
+            % (s, "%.3f" % statistics.median(mine["loops"]) if mine else "-",
+               ", ".join("%.3f" % v for v in mine["loops"]) if mine else "-",
+               pub[0], pub[1], pub[2]))
+    add("")
+    # comparison at each LULESH point
+    add("### Against LULESH's curve")
+    add("")
+    add("At each LULESH point (loop time, L1), impact3d's L1 at the same loop time, "
+        "interpolated in log-log along impact3d's curve (extrapolated from the end "
+        "segment outside its range, marked 'extrap.'). Target (issue 18): below LULESH's "
+        "L1 at every point.")
+    add("")
+    add("| impact3d curve | LULESH points | s | LULESH loop s | LULESH L1 | impact3d L1 at "
+        "that time | ahead |")
+    add("|---|---|---|---|---|---|---|")
+    verdict = {}
+    for label, rows in data["impact3d"].items():
+        curve = [(statistics.median(r["loops"]), r["L1"]) for r in rows]
+        sets = [("issue (its machine)", {s: LULESH_PUBLISHED[s][0] for s in SIZES})]
+        if lul:
+            sets.insert(0, ("measured here", {int(s): statistics.median(v["loops"])
+                                              for s, v in lul.items()}))
+        for name, times in sets:
+            ahead_all = True
+            for s in SIZES:
+                if s not in times:
+                    continue
+                y, ext = loglog_at(curve, times[s])
+                ahead = y < LULESH_PUBLISHED[s][1]
+                ahead_all = ahead_all and ahead
+                add("| %s | %s | %d | %.3f | %.3f | %.4f%s | %s |"
+                    % (label, name, s, times[s], LULESH_PUBLISHED[s][1], y,
+                       " (extrap.)" if ext else "", "yes" if ahead else "**no**"))
+            verdict[(label, name)] = ahead_all
+    add("")
+    for (label, name), ok in verdict.items():
+        add("* impact3d %s against LULESH %s: %s." % (label, name, "ahead at every point"
+                                                      if ok else "not ahead at every point"))
+    add("")
+    add("![LULESH Sedov work-precision](img/%s)" % os.path.basename(PNG))
+    add("")
+    with open(SECTION, "w", encoding="utf-8") as handle:
+        handle.write("\n".join(lines).rstrip() + "\n")
+    plot(data)
+
+
+def plot(data):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    for label, rows in data["impact3d"].items():
+        xs = [statistics.median(r["loops"]) for r in rows]
+        ys = [r["L1"] for r in rows]
+        ax.loglog(xs, ys, "o-", label="impact3d %s (this machine)" % label)
+        for r, x, y in zip(rows, xs, ys):
+            ax.annotate("%d" % r["s"], (x, y), textcoords="offset points", xytext=(4, 4),
+                        fontsize=8)
+    pub = [LULESH_PUBLISHED[s] for s in SIZES]
+    ax.loglog([p[0] for p in pub], [p[1] for p in pub], "s--", color="gray",
+              label="LULESH (issue: its times, its L1)")
+    lul = data.get("lulesh")
+    if lul:
+        xs = [statistics.median(lul[str(s)]["loops"]) for s in SIZES if str(s) in lul]
+        ys = [LULESH_PUBLISHED[s][1] for s in SIZES if str(s) in lul]
+        ax.loglog(xs, ys, "s-", color="k", label="LULESH (times here, L1 of the issue)")
+    iss = [IMPACT3D_ISSUE[s] for s in SIZES]
+    ax.loglog([p[0] for p in iss], [p[1] for p in iss], "^:", color="tab:red", alpha=0.6,
+              label="impact3d before issue 18 (issue)")
+    ax.set_xlabel("loop time, 1 core (s)")
+    ax.set_ylabel("L1(rho), r < 1.1")
+    ax.set_title("LULESH Sedov problem, t = 0.01 (s = 15, 20, 30, 45)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(PNG), exist_ok=True)
+    fig.savefig(PNG, dpi=110)
+    plt.close(fig)
+
+
+def git_commit():
+    try:
+        return subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"],
+                              capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as handle:
+            for line in handle:
+                if line.startswith("model name"):
+                    return "%d x %s" % (os.cpu_count(), line.split(":", 1)[1].strip())
+    except OSError:
+        pass
+    return "unknown CPU"
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--exe", default=os.path.join(ROOT, "build", "impact3d"))
+    p.add_argument("--sizes", type=int, nargs="+", default=SIZES)
+    p.add_argument("--repeats", type=int, default=None,
+                   help="runs per size (default 5 below s = 30, 3 from 30 on)")
+    p.add_argument("--lulesh", default="/tmp/lulesh/lulesh2.0")
+    p.add_argument("--lulesh-src", default="/work/.mirror/LLNL+LULESH/repo")
+    p.add_argument("--no-lulesh", action="store_true")
+    p.add_argument("--hydro", default="", help="&hydro keys added to every deck")
+    p.add_argument("--label", default=None, help="name of this impact3d curve")
+    p.add_argument("--keep", action="store_true",
+                   help="keep the other impact3d curves already in the json")
+    p.add_argument("--render-only", action="store_true")
+    p.add_argument("--no-document", action="store_true",
+                   help="do not re-render docs/benchmarks.md")
+    args = p.parse_args()
+    if args.render_only:
+        with open(JSON, encoding="utf-8") as handle:
+            data = json.load(handle)
+    else:
+        old = {}
+        if args.keep and os.path.exists(JSON):
+            with open(JSON, encoding="utf-8") as handle:
+                old = json.load(handle)
+        exe = os.path.abspath(args.exe)
+        label = args.label or ("defaults" if not args.hydro else args.hydro)
+        lulesh = None if args.no_lulesh else find_lulesh(args.lulesh, args.lulesh_src)
+        meta = {"date": datetime.datetime.now(datetime.timezone.utc).strftime(
+                    "%Y-%m-%d %H:%M UTC"), "commit": git_commit(), "cpu": cpu_name(),
+                "load_start": "%.2f" % os.getloadavg()[0],
+                "repeats_text": str(args.repeats) if args.repeats else "5 (3 at s >= 30)",
+                "lulesh_desc": "LLNL/LULESH (%s)" % args.lulesh_src}
+        rows, lul = [], {}
+        for s in args.sizes:
+            deck = os.path.join(ROOT, "problems", "sedov_lulesh", "sedov_lulesh_%d.nml" % s)
+            n = args.repeats or (5 if s < 30 else 3)
+            row = None
+            for _ in range(n):
+                one = run_impact3d(exe, deck, args.hydro)
+                if row is None:
+                    row = dict(one, s=s, loops=[])
+                row["loops"].append(one["loop"])
+                if lulesh:
+                    lul.setdefault(str(s), {"loops": []})["loops"].append(
+                        run_lulesh(lulesh, s)["loop"])
+            rows.append(row)
+            log("s = %d: impact3d %d cycles, loop %s s, L1 %.4f, shock r %.4f%s"
+                % (s, row["cycles"], row["loops"], row["L1"], row["shock_r"],
+                   ("; LULESH loop %s s" % lul[str(s)]["loops"]) if lulesh else ""))
+        meta["load_end"] = "%.2f" % os.getloadavg()[0]
+        data = {"meta": meta, "impact3d": dict(old.get("impact3d", {}))}
+        data["impact3d"][label] = rows
+        if lul:
+            data["lulesh"] = lul
+        elif old.get("lulesh"):
+            data["lulesh"] = old["lulesh"]
+        with open(JSON, "w", encoding="utf-8") as handle:
+            json.dump(data, handle, indent=1)
+    render(data)
+    log("wrote %s and %s" % (SECTION, PNG))
+    if not args.no_document:
+        subprocess.run([sys.executable, os.path.join(HERE, "run_benchmarks.py"),
+                        "--render-only"], check=True)
+
+
+if __name__ == "__main__":
+    main()
