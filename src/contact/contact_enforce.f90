@@ -68,6 +68,7 @@
 module contact_enforce
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
+  use core_sort, only: sort_values, sort_unique
   use, intrinsic :: iso_fortran_env, only: output_unit
   use mesh_global, only: global_mesh_t, NAME_LEN
   use mesh_local, only: mesh_t
@@ -80,7 +81,7 @@ module contact_enforce
       master_neighbourhood, keep_lower_side, nodal_areas
   use contact_records, only: records_t, take, add_record, send_records, sum_records
   use contact_search, only: bucket_search, primary_pairs, primary_pair_t, segment_pair_search, &
-      search_interval, find_key, sort_real, sort_unique, sort_by_key
+      search_interval, find_key
   use contact_rbf, only: rbf_weights
   use contact_state, only: METHOD_DAM, METHOD_DLM, FORM_COORDINATE, FORM_VELOCITY, &
       FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
@@ -305,7 +306,7 @@ contains
             x(:, surf%segments(c, s))))
       end do
     end do
-    call sort_real(sizes)
+    call sort_values(sizes)
     h = sizes((surf%nseg + 1) / 2)
   end function median_size
 

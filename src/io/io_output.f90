@@ -7,6 +7,7 @@ module io_output
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time, timers_t
+  use core_text, only: fixed_text
   use core_version, only: IMPACT3D_VERSION
   use core_signal, only: signal_name
   use mesh_local, only: mesh_t
@@ -22,20 +23,11 @@ module io_output
   use io_history, only: history_write, relative_error
   implicit none
   private
-  public :: output_dump, output_history, status_line, seconds, command_line
+  public :: output_dump, output_history, status_line, command_line
   public :: input_errors_report, setup_echo, failure_message, max_cycles_message
   public :: stop_message, audit_stop_message, timing_report
 
 contains
-
-  !> Seconds as text with two decimals, no leading blanks ('0.13', '3600.00').
-  function seconds(value) result(text)
-    real(rk), intent(in) :: value
-    character(len=:), allocatable :: text
-    character(len=24) :: buffer
-    write(buffer, '(f24.2)') value
-    text = trim(adjustl(buffer))
-  end function seconds
 
   !> The program's command line (as the process got it).
   function command_line() result(text)
@@ -132,12 +124,12 @@ contains
     if (par_rank() == 0) then
       left = eta%seconds_left(config%t_end)
       eta_text = '?'
-      if (left >= 0.0_rk) eta_text = seconds(left)//' s'
+      if (left >= 0.0_rk) eta_text = fixed_text(left, 2)//' s'
       write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f5.1,a)') &
           'cycle', state%cycle, '  t=', state%time, '  dt=', state%dt, ' (', reason, &
           ' zone ', ctl%dt_zone, ')  dE/E=', relative_error(sums(1) + sums(2), state), &
           '  ', rate, ' zone-cycles/s  ', min(100.0_rk, 100.0_rk * state%time / config%t_end), &
-          '% done  elapsed '//seconds(wall_time() - wall_start)//' s  ETA '//eta_text
+          '% done  elapsed '//fixed_text(wall_time() - wall_start, 2)//' s  ETA '//eta_text
       flush(output_unit)
     end if
     wall_last = wall_time()
@@ -226,7 +218,7 @@ contains
     if (par_rank() /= 0) return
     if (done) then
       write(output_unit, '(a,i0,a)') 'impact3d: stopped at cycle ', state%cycle, &
-          ' with a restart dump, '//seconds(elapsed)//' s after the start; exit code 3'
+          ' with a restart dump, '//fixed_text(elapsed, 2)//' s after the start; exit code 3'
       return
     end if
     select case (ctl%stop)
@@ -236,8 +228,8 @@ contains
           '(remove the file before restarting)'
     case (STOP_WALL)
       write(output_unit, '(a)') 'impact3d: close to the wall-time limit ('// &
-          seconds(elapsed)//' s of wall_limit = '// &
-          seconds(config%wall_limit)//' s used): writing a restart dump and stopping'
+          fixed_text(elapsed, 2)//' s of wall_limit = '// &
+          fixed_text(config%wall_limit, 2)//' s used): writing a restart dump and stopping'
     case default
       write(output_unit, '(a)') 'impact3d: signal '//trim(signal_name(ctl%stop_signal))// &
           ' received: writing a restart dump and stopping'
