@@ -27,7 +27,6 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import radial_gap  # noqa: E402
 
 

@@ -4,13 +4,14 @@ final dump bitwise identical (h5diff, /run excluded) between two builds, on
 1 and 3 ranks.
 
 Usage:
-    bitwise_commits.py [--base HEAD^] [--head HEAD | --head-exe EXE]
+    bitwise_commits.py [--base HEAD^ | --base-exe EXE] [--head HEAD | --head-exe EXE]
         [--decks tests/regression/decks/*.nml] [--ranks 1 3]
         [--max-seconds 120] [--workdir /tmp/impact3d_bitwise]
 
 --base and --head are git revisions, each built (Release) in a temporary
 worktree under --workdir; --head-exe uses an existing executable instead
-(e.g. build/impact3d of the working tree). Decks that fail on the base
+(e.g. build/impact3d of the working tree), --base-exe likewise for the
+base (a copy of the parent's executable kept from its own check). Decks that fail on the base
 build are skipped (a failing deck is its own test's business); decks whose
 base run takes longer than --max-seconds are skipped and listed. The exit
 code is 1 when any dump differs.
@@ -59,6 +60,7 @@ def main():
     ap.add_argument("--base", default="HEAD^")
     ap.add_argument("--head", default="HEAD")
     ap.add_argument("--head-exe", default=None)
+    ap.add_argument("--base-exe", default=None)
     ap.add_argument("--decks", nargs="*",
                     default=sorted(glob.glob(os.path.join(ROOT, "tests/regression/decks/*.nml"))))
     ap.add_argument("--ranks", nargs="*", type=int, default=[1, 3])
@@ -66,7 +68,7 @@ def main():
     ap.add_argument("--workdir", default="/tmp/impact3d_bitwise")
     a = ap.parse_args()
     os.makedirs(a.workdir, exist_ok=True)
-    base_exe = build(a.base, a.workdir)
+    base_exe = a.base_exe or build(a.base, a.workdir)
     head_exe = a.head_exe or build(a.head, a.workdir)
     same = differ = skipped = 0
     for deck in a.decks:

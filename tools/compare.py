@@ -58,14 +58,12 @@ The summary is `key = value` lines, printed and written to --out.
 
 import argparse
 import math
-import os
 import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
 import exact_noh  # noqa: E402
 import exact_riemann  # noqa: E402
 import exact_sedov  # noqa: E402

@@ -24,10 +24,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import compare  # noqa: E402
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
 
 PANELS = (("rho", "density"), ("p", "pressure"), ("u", "velocity"),
           ("e", "specific internal energy"))

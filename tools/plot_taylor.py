@@ -15,15 +15,13 @@ an experiment's, to compare the final shape with.
 import argparse
 import glob
 import os
-import sys
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
 
 FOOT = 1.2  # cm, height of the foot panels of --panels
 

@@ -9,15 +9,14 @@ Writes PREFIX_radius.png and PREFIX_energy.png (default docs/img/verney).
 import argparse
 import glob
 import os
-import sys
 
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
+from impact3d_tools import history  # noqa: E402
 import exact_verney  # noqa: E402
 
 
@@ -49,15 +48,11 @@ def main():
     ax.legend()
     fig.tight_layout()
     fig.savefig(args.out + "_radius.png", dpi=110)
-    with open(os.path.join(args.run, "history.txt")) as f:
-        header = f.readline().split()[1:]
-        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
-    col = {name: i for i, name in enumerate(header)}
+    h = history.read(args.run)
     fig, ax = plt.subplots(figsize=(6, 4))
-    ax.plot(rows[:, col["time"]], rows[:, col["kinetic_energy"]], label="kinetic")
-    ax.plot(rows[:, col["time"]], rows[:, col["internal_energy"]],
-            label="internal (plastic work + elastic)")
-    ax.plot(rows[:, col["time"]], rows[:, col["total_energy"]], "k--", label="total")
+    ax.plot(h["time"], h["kinetic_energy"], label="kinetic")
+    ax.plot(h["time"], h["internal_energy"], label="internal (plastic work + elastic)")
+    ax.plot(h["time"], h["total_energy"], "k--", label="total")
     ax.set_xlabel("time (us)")
     ax.set_ylabel("energy, octant (Mbar cm^3)")
     ax.grid(alpha=0.3)

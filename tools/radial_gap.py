@@ -24,7 +24,7 @@ import sys
 
 import numpy as np
 
-import dump
+from impact3d_tools import dump
 
 # Faces of a hexahedron (0-based local nodes of the connectivity).
 HEX_FACES = ((0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),

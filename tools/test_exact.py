@@ -24,10 +24,9 @@ import traceback
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import compare  # noqa: E402
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
 import exact_noh  # noqa: E402
 import exact_riemann  # noqa: E402
 import exact_sedov  # noqa: E402

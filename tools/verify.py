@@ -53,10 +53,10 @@ import numpy as np  # noqa: E402
 
 TOOLS = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(TOOLS)
-sys.path.insert(0, TOOLS)
 
 import compare  # noqa: E402
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
+from impact3d_tools import history as impact3d_history  # noqa: E402
 import plot_profiles  # noqa: E402
 
 MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
@@ -251,11 +251,7 @@ def rate(coarse, fine, ratio=2.0):
 
 def history(workdir):
     """history.txt as a dict of columns (names from its '#' header line)."""
-    path = os.path.join(workdir, "history.txt")
-    with open(path, encoding="utf-8") as handle:
-        header = handle.readline().lstrip("#").split()
-    table = np.loadtxt(path, comments="#", ndmin=2)
-    return {name: table[:, i] for i, name in enumerate(header)}
+    return impact3d_history.columns(workdir)
 
 
 # --------------------------------------------------------------------------- problems

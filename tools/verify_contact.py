@@ -62,14 +62,12 @@ import numpy as np  # noqa: E402
 
 TOOLS = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(TOOLS)
-sys.path.insert(0, TOOLS)
-sys.path.insert(0, os.path.join(ROOT, "tests", "regression"))
 
 import compare  # noqa: E402
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
+from impact3d_tools import shapes  # noqa: E402
 import exact_verney  # noqa: E402
 import radial_gap  # noqa: E402
-import regress  # noqa: E402
 import verify  # noqa: E402
 
 DPI = 110
@@ -212,7 +210,7 @@ def measure(name, rec, label, pair=None, method=None):
 def stopping_radius(workdir):
     """(time, radius) of the smallest mean radius of the initial r = 8 nodes, and
     the whole history as arrays."""
-    history = regress.inner_radius_history(workdir, VERNEY_INNER_R0)
+    history = shapes.inner_radius_history(workdir, VERNEY_INNER_R0)
     times = np.array([h[0] for h in history])
     radii = np.array([h[1] for h in history])
     i = int(np.argmin(radii))
@@ -751,7 +749,7 @@ def within(shape, reference, tol):
 
 
 def taylor_rows(entries):
-    shapes = {(e["anvil"], e["method"]): regress.rod_shape(e["rec"]["dump"])
+    shapes = {(e["anvil"], e["method"]): shapes.rod_shape(e["rec"]["dump"])
               for e in entries if e["ok"]}
     rigid, steel_dlm = shapes.get(("rigid", None)), shapes.get(("steel", "dlm"))
     rows = []
@@ -784,7 +782,7 @@ def do_taylor(opts, img):
              TAYLOR_CONTACT.format(case=1, anvil="steel", method="dlm")]
     return section("taylor", "Taylor anvil on a deformable anvil",
                    [(d, deck_setup(d)) for d in decks],
-                   "final length L and foot diameter D (tests/regression/regress.py "
+                   "final length L and foot diameter D (tools/impact3d_tools/shapes.py "
                    f"rod_shape, final dump): stiff-anvil runs within {100 * TAYLOR_TOL:.0f} % "
                    f"of the rigid wall's; steel DAM within {100 * TAYLOR_TOL:.0f} % of steel "
                    "DLM; the steel-anvil results against the rigid wall are reported.",

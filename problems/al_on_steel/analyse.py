@@ -21,7 +21,8 @@ import sys
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-import dump  # noqa: E402
+from impact3d_tools import dump  # noqa: E402
+from impact3d_tools import history  # noqa: E402
 
 
 def impedance_match(v=0.1):
@@ -65,10 +66,8 @@ def main():
     print("  Al side %.5f Mbar (%+.2f%%), steel side %.5f Mbar (%+.2f%%)"
           % (sides[:, 0].mean(), 100 * (sides[:, 0].mean() / target - 1),
              sides[:, 1].mean(), 100 * (sides[:, 1].mean() / target - 1)))
-    hist = os.path.join(a.run, "history.txt")
-    with open(hist) as f:
-        header = f.readline().split()[1:]
-        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
+    h = history.read(a.run)
+    header, rows = h.names, h.rows
     pen = [k for k in header if k.endswith("_pen_max")]
     dmom = [k for k in header if k.endswith("_dmom_z")]
     print("energy error at the end %.2e" % rows[-1, header.index("energy_error")])

@@ -1,6 +1,5 @@
-!> What a run records about itself, and what a restart checks against it:
-!> the command line (stored in every dump with the version and the deck), and
-!> the restart's deck against the deck stored in the dump.
+!> What a restart checks: its deck against the deck stored in the dump (the
+!> dumps store it with the version and the command line, io_output).
 module app_provenance
   use, intrinsic :: iso_fortran_env, only: error_unit
   use core_status, only: status_t
@@ -9,7 +8,7 @@ module app_provenance
   use parallel_env, only: par_rank
   implicit none
   private
-  public :: restart_deck_check, command_line
+  public :: restart_deck_check
 
 contains
 
@@ -57,14 +56,5 @@ contains
         ''' was written with outside &control and &output; restore it, or give '// &
         '--restart-force to restart anyway')
   end subroutine restart_deck_check
-
-  !> The program's command line (as the process got it).
-  function command_line() result(text)
-    character(len=:), allocatable :: text
-    integer :: n
-    call get_command(length=n)
-    allocate(character(len=max(n, 1)) :: text)
-    call get_command(text)
-  end function command_line
 
 end module app_provenance

@@ -1,8 +1,10 @@
-!> Set-up of a run: mesh, partition, blocks, boundaries, initial state.
+!> Set-up of a run: the restart's checks, mesh, partition, blocks,
+!> boundaries, initial state, contact, the restart read.
 module app_setup
   use, intrinsic :: iso_fortran_env, only: output_unit
   use core_kinds, only: rk, ik
   use core_status, only: status_t
+  use core_timer, only: timers_t
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
@@ -14,15 +16,68 @@ module app_setup
   use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
+  use contact_enforce, only: contact_t, contact_setup
+  use contact_monitor, only: contact_initial
+  use contact_state, only: initial_offsets_t
   use io_deck, only: config_t
+  use io_dump, only: dump_read
+  use io_probe, only: probes_t, probe_setup
+  use app_provenance, only: restart_deck_check
   use material_table, only: STRENGTH_NONE
-  use parallel_env, only: par_size, par_rank
+  use parallel_env, only: par_size, par_rank, par_bcast
   use parallel_partition, only: partition_zones
   implicit none
   private
-  public :: setup_mesh, setup_state, assign_blocks
+  public :: setup_run, setup_mesh, setup_state, assign_blocks
 
 contains
+
+  !> Everything between the deck and the first cycle that input can make
+  !> fail, in order: a restart file's existence and its stored deck against
+  !> this one (before anything else), the mesh, initial contact overlaps (may
+  !> move nodes: before the nodal masses), the state, the contact set-up, the
+  !> probes, the restart read (section 'restart read' of timers). Problems
+  !> go to status.
+  subroutine setup_run(config, restart, force, mesh, bc, state, mz, ct, probes, timers, status)
+    type(config_t), intent(in) :: config
+    character(len=*), intent(in) :: restart !< restart dump, '' for a new run
+    logical, intent(in) :: force !< restart even if groups that must not change did
+    type(mesh_t), intent(out) :: mesh
+    type(boundary_t), intent(out) :: bc
+    type(state_t), intent(out) :: state
+    type(material_zones_t), intent(out) :: mz
+    type(contact_t), intent(out) :: ct
+    type(probes_t), intent(out) :: probes
+    type(timers_t), intent(inout) :: timers
+    type(status_t), intent(inout) :: status
+    type(global_mesh_t) :: global
+    type(initial_offsets_t), allocatable :: offsets(:)
+    logical :: exists
+    if (len_trim(restart) > 0) then
+      exists = .false.
+      if (par_rank() == 0) inquire(file=restart, exist=exists)
+      call par_bcast(exists)
+      if (.not. exists) call status%add('&control: restart: file '''//trim(restart)// &
+          ''' does not exist')
+      if (status%ok()) call restart_deck_check(restart, config, force, status)
+    end if
+    if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
+    if (.not. status%ok()) return
+    if (size(config%contacts) > 0) call contact_initial(config%contacts, global, &
+        bc%symmetry_planes, offsets, status)
+    if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
+    if (status%ok()) call probe_setup(config%probes, global, mesh, config%output%directory, &
+        config%units, probes, status)
+    if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
+        status, offsets, bc%symmetry_planes)
+    if (.not. status%ok()) return
+    call global%free()
+    if (len_trim(restart) > 0) then
+      call timers%start('restart read')
+      call dump_read(restart, mesh, state, status)
+      call timers%stop('restart read')
+    end if
+  end subroutine setup_run
 
   !> Each zone not yet in a block belongs to the last block whose box holds
   !> its centroid; blocks marked in claimed (named after a volume group of an

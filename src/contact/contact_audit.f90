@@ -42,7 +42,7 @@
 module contact_audit
   use core_kinds, only: rk, ik
   use contact_surface, only: contact_surface_t, surface_node_index
-  use contact_search, only: sort_real
+  use core_sort, only: sort_values
   use mesh_geometry, only: cross
   implicit none
   private
@@ -213,7 +213,7 @@ contains
       if (surf%nseg == 0) return
       allocate(sag(surf%nseg), sz(surf%nseg), tn(3, 4, surf%nseg), tc(3, surf%nseg))
       call segment_metrics(x, surf, sz, sag, tn, tc)
-      call sort_real(sz)
+      call sort_values(sz)
       h = sz((surf%nseg + 1) / 2)
     end function median_size
   end function audit_reach

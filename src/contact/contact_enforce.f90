@@ -43,13 +43,14 @@
 module contact_enforce
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
+  use core_sort, only: sort_values, sort_unique
   use, intrinsic :: iso_fortran_env, only: output_unit
   use mesh_global, only: global_mesh_t
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_node_index, set_names_of
   use contact_records, only: records_t, take, send_records, sum_records
-  use contact_search, only: find_key, sort_real, sort_unique
+  use contact_search, only: find_key
   use contact_state, only: METHOD_DAM, METHOD_DLM, FORM_COORDINATE, FORM_VELOCITY, &
       FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
       surface_geometry_t, selection_t, contact_t, initial_offsets_t, step_sums_t
@@ -276,7 +277,7 @@ contains
             x(:, surf%segments(c, s))))
       end do
     end do
-    call sort_real(sizes)
+    call sort_values(sizes)
     h = sizes((surf%nseg + 1) / 2)
   end function median_size
 

@@ -31,11 +31,11 @@
 !> Nodes far from any pair belong to no local set and cost nothing.
 module contact_parts
   use core_kinds, only: rk, ik, i8
+  use core_sort, only: sort_order, sort_values
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_node_index, add_ring, local_surface, &
       keep_lower_side
-  use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key, &
-      sort_by_key
+  use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
   use contact_state, only: contact_t, selection_t, int_list_t, METHOD_DLM, capture_of, &
       key_node, geometry_free
   use parallel_env, only: par_max, par_size, par_sum
@@ -62,7 +62,7 @@ contains
     integer :: k, i, n, s
 
     zone_key = mesh%zone_gid(:mesh%nzone_owned)
-    call sort_by_key(zone_key, perm)
+    call sort_order(zone_key, perm)
     zone_key = zone_key(perm)
     allocate(ct%key_capable(ct%nown))
     ct%key_capable = .false.
@@ -430,8 +430,8 @@ contains
 
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        call sort_int(keys(k)%v)
-        call sort_int(cands(k)%v)
+        call sort_values(keys(k)%v)
+        call sort_values(cands(k)%v)
         if (p%method == METHOD_DLM) then
           call segment_pair_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
               keys(k)%v, cands(k)%v)
@@ -460,14 +460,6 @@ contains
     end subroutine emit
 
   end subroutine search_on_parts
-
-  !> Ascending sort of a short integer list (via the 64-bit merge sort).
-  subroutine sort_int(v)
-    integer, intent(inout) :: v(:)
-    integer, allocatable :: perm(:)
-    call sort_by_key(int(v, i8), perm)
-    v = v(perm)
-  end subroutine sort_int
 
   !> Weights of the next RCB: each owned node's pairs keyed at this search
   !> (counted at the owners); when no part found any pair, one for each node

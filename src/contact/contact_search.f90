@@ -48,13 +48,14 @@
 !> of segments or pairs.
 module contact_search
   use core_kinds, only: rk, ik, i8
+  use core_sort, only: sort_order, sort_values
   use contact_surface, only: contact_surface_t, edge_end
   use contact_geometry, only: quad_unit_normal
   implicit none
   private
   public :: segment_territory, bucket_search, closest_point, contact_kind, primary_pairs
   public :: pair_excluded, search_interval, segment_pair_search
-  public :: find_key, sort_real, sort_by_key, sort_unique
+  public :: find_key
 
   !> No contact.
   integer, parameter, public :: KIND_NONE = 0
@@ -200,7 +201,7 @@ contains
     integer, allocatable :: mark(:), list(:), segs(:)
     real(rk) :: lo(3), hi(3)
     integer(i8) :: cell_lo(3), cell_hi(3), i, j, k, key
-    integer :: sa, sb, b, e, npair, first, m, swap, jb, ma
+    integer :: sa, sb, b, e, npair, first, jb, ma
 
     npair = 0
     allocate(pairs(2, 0))
@@ -238,17 +239,8 @@ contains
           end do
         end do
       end do
-      ! Ascending b within a (insertion sort of this short run).
-      do m = first + 1, npair
-        swap = pairs(2, m)
-        e = m - 1
-        do while (e >= first)
-          if (pairs(2, e) <= swap) exit
-          pairs(2, e + 1) = pairs(2, e)
-          e = e - 1
-        end do
-        pairs(2, e + 1) = swap
-      end do
+      ! Ascending b within a.
+      call sort_values(pairs(2, first:npair))
     end do
     pairs = pairs(:, :npair)
   end subroutine segment_pair_search
@@ -285,7 +277,7 @@ contains
       call segment_territory(x(:, master%segments(:, list(s))), margin, g%lo(:, s), g%hi(:, s))
       sizes(s) = maxval(g%hi(:, s) - g%lo(:, s))
     end do
-    call sort_real(sizes)
+    call sort_values(sizes)
     g%h = sizes((nseg + 1) / 2)
     g%origin = minval(g%lo, dim=2)
     g%top = maxval(g%hi, dim=2)
@@ -318,7 +310,7 @@ contains
         end do
       end do
     end do
-    call sort_by_key(entry_key, perm)
+    call sort_order(entry_key, perm)
 
     ! Buckets: distinct keys with a CSR into the segments.
     nbucket = 0
@@ -704,72 +696,6 @@ contains
     w(3) = u(1) * v(2) - u(2) * v(1)
   end function cross
 
-  !> Sort a real array ascending (bottom-up merge sort).
-  pure subroutine sort_real(a)
-    real(rk), intent(inout) :: a(:)
-    real(rk), allocatable :: work(:)
-    integer :: n, width, left, mid, right, i, j, k
-    n = size(a)
-    allocate(work(n))
-    width = 1
-    do while (width < n)
-      left = 1
-      do while (left <= n)
-        mid = min(left + width, n + 1)
-        right = min(left + 2 * width, n + 1)
-        i = left
-        j = mid
-        do k = left, right - 1
-          if (i < mid .and. (j >= right .or. a(min(i, n)) <= a(min(j, n)))) then
-            work(k) = a(i)
-            i = i + 1
-          else
-            work(k) = a(j)
-            j = j + 1
-          end if
-        end do
-        left = right
-      end do
-      a = work
-      width = 2 * width
-    end do
-  end subroutine sort_real
-
-  !> Stable sort permutation of integer keys (bottom-up merge sort).
-  pure subroutine sort_by_key(key, perm)
-    integer(i8), intent(in) :: key(:)
-    integer, allocatable, intent(out) :: perm(:)
-    integer, allocatable :: work(:)
-    integer :: n, width, left, mid, right, i, j, k
-    n = size(key)
-    allocate(perm(n), work(n))
-    do i = 1, n
-      perm(i) = i
-    end do
-    width = 1
-    do while (width < n)
-      left = 1
-      do while (left <= n)
-        mid = min(left + width, n + 1)
-        right = min(left + 2 * width, n + 1)
-        i = left
-        j = mid
-        do k = left, right - 1
-          if (i < mid .and. (j >= right .or. key(perm(min(i, n))) <= key(perm(min(j, n))))) then
-            work(k) = perm(i)
-            i = i + 1
-          else
-            work(k) = perm(j)
-            j = j + 1
-          end if
-        end do
-        left = right
-      end do
-      perm = work
-      width = 2 * width
-    end do
-  end subroutine sort_by_key
-
   !> Cycles between global searches such that no contact is missed: a node and
   !> a segment close at most at the relative speed `speed`; with a factor 2 of
   !> safety for acceleration and dt growing by dt_growth per cycle, k is the
@@ -806,36 +732,5 @@ contains
     end do
     k = max(1, k)
   end function search_interval
-
-  !> Sort ascending and drop repeats.
-  subroutine sort_unique(a)
-    integer(i8), allocatable, intent(inout) :: a(:)
-    integer(i8) :: t
-    integer :: i, j, n, gap
-    n = size(a)
-    gap = n / 2
-    do while (gap > 0)
-      do i = gap + 1, n
-        t = a(i)
-        j = i
-        do while (j > gap)
-          if (a(j - gap) <= t) exit
-          a(j) = a(j - gap)
-          j = j - gap
-        end do
-        a(j) = t
-      end do
-      gap = gap / 2
-    end do
-    j = 0
-    do i = 1, n
-      if (j > 0) then
-        if (a(i) == a(j)) cycle
-      end if
-      j = j + 1
-      a(j) = a(i)
-    end do
-    a = a(:j)
-  end subroutine sort_unique
 
 end module contact_search

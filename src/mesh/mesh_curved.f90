@@ -15,6 +15,8 @@
 module mesh_curved
   use core_kinds, only: rk, ik
   use core_status, only: status_t
+  use core_sort, only: sort_order
+  use core_text, only: real_text => to_text, int_text => to_text
   use mesh_geometry, only: hex_volume
   use mesh_global, only: global_mesh_t, interval_points, NAME_LEN
   implicit none
@@ -701,7 +703,7 @@ contains
 
     npoint = size(raw, 2)
     key = matmul(DIRECTION, raw)
-    call sort_index(key, order)
+    call sort_order(key, order)
     window = tolerance * norm2(DIRECTION)
     allocate(representative(npoint))
     representative = 0
@@ -731,49 +733,6 @@ contains
     end do
     coordinates = coordinates(:, 1:nnode)
   end subroutine merge_nodes
-
-  !> Stable merge sort: key(order) is non-decreasing.
-  subroutine sort_index(key, order)
-    real(rk), intent(in) :: key(:)
-    integer, allocatable, intent(out) :: order(:)
-    integer, allocatable :: work(:)
-    integer :: n, width, low, middle, high, i, j, k
-    logical :: take_left
-
-    n = size(key)
-    allocate(order(n), work(n))
-    order = [(i, i = 1, n)]
-    width = 1
-    do while (width < n)
-      low = 1
-      do while (low <= n)
-        middle = min(low + width - 1, n)
-        high = min(low + 2 * width - 1, n)
-        i = low
-        j = middle + 1
-        do k = low, high
-          take_left = .false.
-          if (i <= middle) then
-            if (j > high) then
-              take_left = .true.
-            else
-              take_left = key(order(i)) <= key(order(j))
-            end if
-          end if
-          if (take_left) then
-            work(k) = order(i)
-            i = i + 1
-          else
-            work(k) = order(j)
-            j = j + 1
-          end if
-        end do
-        low = low + 2 * width
-      end do
-      order = work
-      width = 2 * width
-    end do
-  end subroutine sort_index
 
   !> (cos, sin) of the angle (pi/2) quarters j / n, exact at multiples of pi/2.
   pure function circle_point(j, n, quarters) result(c)
@@ -826,21 +785,5 @@ contains
     if (value < least) call status%add(key // ' must be >= ' // int_text(least) // ' (got ' // &
         int_text(value) // ')')
   end subroutine require_count
-
-  function real_text(x) result(text)
-    real(rk), intent(in) :: x
-    character(len=:), allocatable :: text
-    character(len=40) :: buffer
-    write(buffer, '(g0)') x
-    text = trim(adjustl(buffer))
-  end function real_text
-
-  function int_text(i) result(text)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: text
-    character(len=20) :: buffer
-    write(buffer, '(i0)') i
-    text = trim(buffer)
-  end function int_text
 
 end module mesh_curved

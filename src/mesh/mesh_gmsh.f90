@@ -15,6 +15,8 @@ module mesh_gmsh
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
+  use core_sort, only: sort_order
+  use core_text, only: itoa => to_text, i8toa => to_text
   use mesh_geometry, only: hex_volume, HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
   implicit none
@@ -316,7 +318,7 @@ contains
         if (r%failed) return
       end do
     end do
-    call sort_columns(data%entity_key, data%entity_order)
+    call sort_order(data%entity_key, data%entity_order)
     data%has_entities = .true.
     call reader_expect(r, '$EndEntities')
   end subroutine parse_entities
@@ -786,7 +788,7 @@ contains
     ! Nodes: file index of every tag, then compact ids of those used by hexahedra.
     allocate(node_keys(1, data%nnode))
     node_keys(1, :) = data%node_tag(1:data%nnode)
-    call sort_columns(node_keys, node_order)
+    call sort_order(node_keys, node_order)
     nbad = 0
     do i = 2, data%nnode
       if (node_keys(1, node_order(i)) == node_keys(1, node_order(i - 1))) then
@@ -852,7 +854,7 @@ contains
     do z = 1, mesh%nzone
       keys(:, z) = sorted_key(int(mesh%connectivity(:, z)))
     end do
-    call sort_columns(keys, order)
+    call sort_order(keys, order)
     nbad = 0
     do i = 2, mesh%nzone
       if (all(keys(:, order(i)) == keys(:, order(i - 1)))) then
@@ -908,7 +910,7 @@ contains
             sorted_key(int(mesh%connectivity(HEX_FACE_NODES(:, f), z)))
       end do
     end do
-    call sort_columns(face_keys, face_order)
+    call sort_order(face_keys, face_order)
 
     allocate(quad_set(data%nquad), quad_face(data%nquad))
     quad_face = 0
@@ -964,7 +966,7 @@ contains
     do q = 1, data%nquad
       entry_keys(:, q) = [int(quad_set(q), i8), int(quad_face(q), i8)]
     end do
-    call sort_columns(entry_keys, entry_order)
+    call sort_order(entry_keys, entry_order)
     allocate(mesh%set_zone(data%nquad), mesh%set_face(data%nquad))
     n = 0
     m = 1
@@ -1021,7 +1023,7 @@ contains
         keys(1, n) = data%name_tag(i)
       end if
     end do
-    call sort_columns(keys(:, 1:n), order)
+    call sort_order(keys(:, 1:n), order)
     allocate(tags(n))
     m = 0
     do i = 1, n
@@ -1139,60 +1141,6 @@ contains
   ! ---------------------------------------------------------------------------
   ! Sorting and searching
   ! ---------------------------------------------------------------------------
-
-  !> Stable bottom-up merge sort: order lists the columns of keys lexicographically.
-  subroutine sort_columns(keys, order)
-    integer(i8), intent(in) :: keys(:, :)
-    integer, allocatable, intent(out) :: order(:)
-    integer, allocatable :: work(:)
-    integer :: n, width, lo, mid, hi, i, j, k
-
-    n = size(keys, 2)
-    allocate(order(n), work(n))
-    do i = 1, n
-      order(i) = i
-    end do
-    width = 1
-    do while (width < n)
-      lo = 1
-      do while (lo <= n)
-        mid = min(lo + width - 1, n)
-        hi = min(lo + 2 * width - 1, n)
-        i = lo
-        j = mid + 1
-        k = lo
-        do while (i <= mid .and. j <= hi)
-          if (column_less(keys, order(j), order(i))) then
-            work(k) = order(j)
-            j = j + 1
-          else
-            work(k) = order(i)
-            i = i + 1
-          end if
-          k = k + 1
-        end do
-        if (i <= mid) work(k:hi) = order(i:mid)
-        if (j <= hi) work(k:hi) = order(j:hi)
-        lo = hi + 1
-      end do
-      order = work
-      width = 2 * width
-    end do
-  end subroutine sort_columns
-
-  !> Column a of keys sorts before column b.
-  pure logical function column_less(keys, a, b)
-    integer(i8), intent(in) :: keys(:, :)
-    integer, intent(in) :: a, b
-    integer :: i
-    column_less = .false.
-    do i = 1, size(keys, 1)
-      if (keys(i, a) /= keys(i, b)) then
-        column_less = keys(i, a) < keys(i, b)
-        return
-      end if
-    end do
-  end function column_less
 
   !> First position p in order with keys(:, order(p)) >= key; size(order) + 1 if none.
   pure integer function lower_bound(keys, order, key) result(lo)
@@ -1476,21 +1424,5 @@ contains
       short = text
     end if
   end function clip
-
-  !> Decimal text of an integer.
-  pure function itoa(value) result(text)
-    integer, intent(in) :: value
-    character(len=:), allocatable :: text
-    text = i8toa(int(value, i8))
-  end function itoa
-
-  !> Decimal text of a 64-bit integer.
-  pure function i8toa(value) result(text)
-    integer(i8), intent(in) :: value
-    character(len=:), allocatable :: text
-    character(len=24) :: buffer
-    write(buffer, '(i0)') value
-    text = trim(buffer)
-  end function i8toa
 
 end module mesh_gmsh

@@ -27,6 +27,7 @@
 module parallel_rcb
   use mpi_f08, only: MPI_Allreduce, MPI_Op, MPI_INTEGER8, MPI_SUM, MPI_MIN
   use core_kinds, only: rk, i8
+  use core_sort, only: sort_values
   use parallel_env, only: par_comm, par_abort
   implicit none
   private
@@ -531,7 +532,7 @@ contains
       a(1:nnext) = a_next(1:nnext)
       b(1:nnext) = b_next(1:nnext)
     end do
-    call sort_small(probe(1:nprobe))
+    call sort_values(probe(1:nprobe))
   end subroutine make_probes
 
   !> floor((a + b) / 2) without overflow.
@@ -540,23 +541,6 @@ contains
     integer(i8) :: m
     m = iand(a, b) + shifta(ieor(a, b), 1)
   end function floor_average
-
-  !> Insertion sort of a few keys.
-  pure subroutine sort_small(v)
-    integer(i8), intent(inout) :: v(:)
-    integer :: i, j
-    integer(i8) :: t
-    do i = 2, size(v)
-      t = v(i)
-      j = i - 1
-      do while (j >= 1)
-        if (v(j) <= t) exit
-        v(j + 1) = v(j)
-        j = j - 1
-      end do
-      v(j + 1) = t
-    end do
-  end subroutine sort_small
 
   !> The first j with value <= sorted(j), 0 if none.
   pure integer function first_at_least(sorted, n, value) result(j)

@@ -11,10 +11,12 @@ module solver_control
   use hydro_state, only: state_t, hydro_options_t
   use hydro_kernels, only: DT_CFL
   use hydro_driver, only: hydro_time_step
-  use parallel_env, only: par_size, par_allgather
+  use core_signal, only: signal_caught
+  use parallel_env, only: par_rank, par_size, par_allgather
+  use solver_schedule, only: schedule_t
   implicit none
   private
-  public :: control_reduce
+  public :: control_reduce, control_stop_request, control_step_failed
 
   !> Failure kinds.
   integer, parameter, public :: FAIL_NONE = 0, FAIL_VOLUME = 1, FAIL_NAN = 2, FAIL_DT = 3
@@ -118,5 +120,39 @@ contains
       end if
     end do
   end subroutine control_reduce
+
+  !> This rank's clean-stop request after a cycle, for control_reduce: rank 0
+  !> checks the wall-time budget (plan%wall_stop_due) and, when due, looks for
+  !> the STOP file; any rank reports a signal it caught (its number in signum,
+  !> 0 for none).
+  subroutine control_stop_request(plan, cycle, elapsed, cycle_wall, dump_wall, stop_path, &
+      request, signum)
+    type(schedule_t), intent(in) :: plan
+    integer(i8), intent(in) :: cycle
+    real(rk), intent(in) :: elapsed !< seconds since the start of the run
+    real(rk), intent(in) :: cycle_wall !< seconds of this cycle
+    real(rk), intent(in) :: dump_wall !< seconds of the longest dump so far
+    character(len=*), intent(in) :: stop_path !< the STOP file
+    integer, intent(out) :: request, signum
+    logical :: exists
+    request = STOP_NONE
+    if (par_rank() == 0) then
+      if (plan%wall_stop_due(elapsed, cycle_wall, dump_wall)) request = STOP_WALL
+      if (plan%stop_check_due(cycle)) then
+        inquire(file=stop_path, exist=exists)
+        if (exists) request = STOP_FILE
+      end if
+    end if
+    signum = signal_caught()
+    if (signum /= 0) request = STOP_SIGNAL
+  end subroutine control_stop_request
+
+  !> The step fell below dt_min: a failure set by the zone of the stable step.
+  subroutine control_step_failed(ctl)
+    type(control_t), intent(inout) :: ctl
+    ctl%fail = FAIL_DT
+    ctl%fail_id = ctl%dt_zone
+    ctl%fail_position = ctl%dt_position
+  end subroutine control_step_failed
 
 end module solver_control

@@ -3,7 +3,7 @@
 !> cycle). Above hydro and contact, below io and app: no deck, no output.
 module solver_step
   use core_kinds, only: rk
-  use core_timer, only: wall_time, timer_t
+  use core_timer, only: wall_time, timers_t
   use mesh_local, only: mesh_t
   use material_table, only: material_t
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
@@ -11,18 +11,73 @@ module solver_step
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_strength_update
   use contact_enforce, only: contact_t, contact_apply, contact_work_update
+  use contact_monitor, only: contact_audit_run, contact_step_end
+  use parallel_env, only: par_sum
+  use solver_schedule, only: schedule_t
   implicit none
   private
-  public :: solver_lagrange_step
+  public :: solver_cycle, solver_lagrange_step, solver_audit
 
 contains
+
+  !> A cycle of dt (from plan%choose_step) with its bookkeeping: the step,
+  !> the boundary and contact work summed over the ranks, the contact
+  !> interfaces' step diagnostics, time landed on the dump time or t_end,
+  !> cycle count, the stable step kept for the growth limit; then the contact
+  !> audit when a global search ran or a dump ends the cycle. Sections 'step'
+  !> (with 'halo' and 'contact' within) and 'audit' of timers.
+  subroutine solver_cycle(opt, materials, mesh, state, mz, bc, ct, plan, dt, bad_half, bad, &
+      timers)
+    type(hydro_options_t), intent(in) :: opt
+    type(material_t), intent(in) :: materials(:)
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_zones_t), intent(in) :: mz
+    type(boundary_t), intent(inout) :: bc
+    type(contact_t), intent(inout) :: ct
+    type(schedule_t), intent(in) :: plan
+    real(rk), intent(in) :: dt
+    integer, intent(out) :: bad_half, bad !< local zones with bad volume (0 = none)
+    type(timers_t), intent(inout) :: timers
+    real(rk) :: work, contact_work
+    call timers%start('step')
+    state%dt = dt
+    call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
+        work, contact_work, timers)
+    state%boundary_work = state%boundary_work + par_sum(work)
+    if (ct%npair > 0) then
+      state%contact_work = state%contact_work + par_sum(contact_work)
+      call contact_step_end(ct)
+    end if
+    state%time = plan%land(state%time, dt)
+    state%cycle = state%cycle + 1
+    state%dt_previous = plan%dt_stable
+    call timers%stop('step')
+    if (ct%npair > 0) then
+      if (ct%audit_due .or. plan%audit_due(state%cycle)) call solver_audit(ct, state, timers)
+    end if
+  end subroutine solver_cycle
+
+  !> The contact audit at x^n of the state (section 'audit' of timers); its
+  !> gaps go to the state for the dumps.
+  subroutine solver_audit(ct, state, timers)
+    type(contact_t), intent(inout) :: ct
+    type(state_t), intent(inout) :: state
+    type(timers_t), intent(inout) :: timers
+    call timers%start('audit')
+    call contact_audit_run(ct, state%node_position, state%cycle, state%time)
+    call timers%stop('audit')
+    ct%audit_seconds = ct%audit_seconds + timers%last('audit')
+    state%node_contact_gap = 0.0_rk
+    state%node_contact_gap(ct%own_local) = ct%gap_own
+  end subroutine solver_audit
 
   !> One predictor-corrector cycle from t^n to t^n+1: forces at t^n, contact
   !> on the half step, half-step velocities, geometry and EOS at t^n+1/2;
   !> forces at t^n+1/2, contact on the final update (its work), final
   !> velocities, positions, energies, deviatoric stress and zone state.
   subroutine solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
-      work, contact_work, halo)
+      work, contact_work, timers)
     type(hydro_options_t), intent(in) :: opt
     type(material_t), intent(in) :: materials(:)
     type(mesh_t), intent(inout) :: mesh
@@ -34,7 +89,7 @@ contains
     integer, intent(out) :: bad_half, bad
     real(rk), intent(out) :: work !< boundary work of the step (local)
     real(rk), intent(out) :: contact_work !< contact work of the step (local)
-    type(timer_t), intent(inout) :: halo !< time in the node halo exchanges
+    type(timers_t), intent(inout) :: timers !< sections 'halo' and 'contact'
     real(rk) :: unused
     integer :: n
     logical :: strength
@@ -56,12 +111,16 @@ contains
     ! Contact acts on the predictor's half step too, as the rigid wall does:
     ! otherwise the half-step geometry interpenetrates freely and the contact
     ! pressure lags half a step (the mirror test shows it).
-    if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-        state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
+    if (ct%npair > 0) then
+      call timers%start('contact')
+      call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
+          state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
+      call timers%stop('contact')
+    end if
     call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
-    call halo%start()
+    call timers%start('halo')
     call mesh%node_halo%exchange(state%node_velocity_half)
-    call halo%stop()
+    call timers%stop('halo')
     do n = 1, mesh%nnode
       state%node_position(:, n) = state%node_position_old(:, n) + 0.5_rk * dt * &
           state%node_velocity_half(:, n)
@@ -82,14 +141,22 @@ contains
     end if
     ! Contact on the final update, boundary conditions re-imposed after it.
     contact_work = 0.0_rk
-    if (ct%npair > 0) call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-        state%node_force, dt, state%cycle + 1, .true., wall_time)
+    if (ct%npair > 0) then
+      call timers%start('contact')
+      call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
+          state%node_force, dt, state%cycle + 1, .true., wall_time)
+      call timers%stop('contact')
+    end if
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
-    if (ct%npair > 0) call contact_work_update(ct, state%node_velocity_old, &
-        state%node_velocity, dt, contact_work)
-    call halo%start()
+    if (ct%npair > 0) then
+      call timers%start('contact')
+      call contact_work_update(ct, state%node_velocity_old, state%node_velocity, dt, &
+          contact_work)
+      call timers%stop('contact')
+    end if
+    call timers%start('halo')
     call mesh%node_halo%exchange(state%node_velocity)
-    call halo%stop()
+    call timers%stop('halo')
     do n = 1, mesh%nnode
       state%node_velocity_half(:, n) = 0.5_rk * (state%node_velocity_old(:, n) + &
           state%node_velocity(:, n))

@@ -71,7 +71,8 @@ Subcommands (all take --exe PATH and --mpiexec PATH and run in --workdir):
                                       D and R write the same dumps, every one bitwise
                                       identical (h5diff, /run excluded): e.g. a material
                                       given by deck keys against its library set
-Prints 'N passed, M failed' and exits 1 on failure.
+Prints 'N passed, M failed' and exits 1 on failure. Needs tools/ on
+PYTHONPATH (the impact3d_tools package; CTest sets it).
 """
 import argparse
 import glob
@@ -81,9 +82,11 @@ import shutil
 import subprocess
 import sys
 
+from impact3d_tools import dump, history
+from impact3d_tools.shapes import inner_radius_history, rod_shape
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOOLS = os.path.join(HERE, "..", "..", "tools")
-sys.path.insert(0, TOOLS)
 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
@@ -108,16 +111,11 @@ def run(args, np, workdir, deck, extra=()):
 
 
 def read_history(workdir):
-    """history.txt of a run: (column names, rows as a float array)."""
-    import numpy as np
-    with open(os.path.join(workdir, "history.txt")) as f:
-        header = f.readline().split()[1:]
-        rows = np.array([[float(x) for x in line.split()] for line in f if line.strip()])
-    # The row of cycle 0 (the initial state, no step taken) is left out: the
-    # checks here are on the steps.
-    if len(rows) and rows[0, 0] == 0:
-        rows = rows[1:]
-    return header, rows
+    """history.txt of a run: (column names, rows as a float array). The row of
+    cycle 0 (the initial state, no step taken) is left out: the checks here
+    are on the steps."""
+    h = history.read(workdir).steps()
+    return h.names, h.rows
 
 
 def final_dump(workdir):
@@ -248,11 +246,9 @@ def cmd_energy(args):
     check("run exits 0", code == 0, err[-2000:])
     if code != 0:
         return
-    with open(os.path.join(wd, "history.txt")) as f:
-        header = f.readline().split()[1:]
-        rows = [line.split() for line in f if line.strip()]
-    col = header.index("energy_error")
-    worst = max(abs(float(r[col])) for r in rows)
+    h = history.read(wd)
+    rows = h.rows
+    worst = max(abs(h["energy_error"]))
     check("history has the run's cycles", len(rows) > 10, "%d rows" % len(rows))
     check("max |relative energy error| %.3e <= %.1e" % (worst, args.tol), worst <= args.tol)
 
@@ -276,7 +272,6 @@ def cmd_failure(args):
     failed = glob.glob(os.path.join(wd, "*_failed.h5"))
     check("a final dump was written", len(failed) == 1, str(failed))
     if failed and m:
-        import dump
         d = dump.load(failed[0])
         check("final dump is at the failing cycle", int(d["attrs"]["cycle"]) == int(m.group(5)))
 
@@ -346,7 +341,6 @@ def cmd_convergence(args):
 
 def cmd_window(args):
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "window")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0 (no tangling)", code == 0, err[-2000:])
@@ -365,7 +359,6 @@ def cmd_window(args):
 
 def cmd_interface(args):
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "interface")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
@@ -426,7 +419,6 @@ def cmd_stability(args):
 def cmd_wavefront(args):
     """Speed of a planar front: where the x velocity crosses half the piston speed."""
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "wavefront")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
@@ -480,7 +472,6 @@ def cmd_bars(args):
     (within --tol of |v_left - v_right|: the velocity never reverses); after
     separation each bar's mean velocity is --final-left / --final-right."""
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "bars")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
@@ -567,7 +558,6 @@ def cmd_mirror(args):
     total momentum along --momentum-axes (zero by symmetry) against the body's
     initial momentum there."""
     import numpy as np
-    import dump
     wd_ref = os.path.join(args.workdir, "wall")
     wd = os.path.join(args.workdir, "mirror")
     code, out, err = run(args, args.np, wd_ref, args.reference)
@@ -650,7 +640,6 @@ def cmd_patch(args):
     section, (max - min)/|mean| <= --tol, and its mean equals --target within
     --tol (the applied pressure, transmitted through matched impedances)."""
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "patch")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
@@ -769,17 +758,6 @@ def report_contact_energy(workdir):
           % (np.abs(rows[:, header.index("energy_error")]).max() / abs(e0)))
 
 
-def rod_shape(path):
-    """Final length (z extent) and largest diameter (2 max sqrt(x^2 + y^2)) of
-    the rod, the block of the first zone, in a dump."""
-    import numpy as np
-    import dump
-    d = dump.load(path)
-    rod = np.unique(d["connectivity"][d["block"] == d["block"][0]].ravel())
-    x = d["coordinates"][rod]
-    return x[:, 2].max() - x[:, 2].min(), 2.0 * np.hypot(x[:, 0], x[:, 1]).max()
-
-
 def cmd_shape(args):
     """Taylor rods: the final length L and foot diameter D of --deck are within
     --tol (relative) of those of --reference."""
@@ -821,7 +799,6 @@ def cmd_slide(args):
     (--pair) or, without contact, the boundary work - ends within --tol of
     minus the block's initial kinetic energy and never exceeds 1e-3 of it."""
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "slide")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
@@ -919,7 +896,6 @@ def cmd_impact(args):
     give it for DLM, exact); reports the contact work and the final
     mass-weighted velocity of each block."""
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "impact")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
@@ -962,7 +938,6 @@ def cmd_twowave(args):
     --target-velocity the piston speed; the run starts at t = 0 with the piston
     at --origin."""
     import numpy as np
-    import dump
     wd = os.path.join(args.workdir, "twowave")
     code, out, err = run(args, args.np, wd, args.deck)
     check("run exits 0", code == 0, err[-2000:])
@@ -1003,27 +978,11 @@ def cmd_twowave(args):
           % (plastic_lab, expected, u_measured), abs(plastic_lab / expected - 1) <= 0.03)
 
 
-def inner_radius_history(wd, origin):
-    """(time, mean radius) over the dumps of the nodes at radius origin at t = 0."""
-    import numpy as np
-    import dump
-    files = sorted(glob.glob(os.path.join(wd, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
-    d0 = dump.load(files[0])
-    inner = np.abs(np.linalg.norm(d0["coordinates"], axis=1) - origin) < 1e-9 * origin
-    history = []
-    for path in files:
-        d = dump.load(path)
-        history.append((float(d["attrs"]["time"]),
-                        float(np.linalg.norm(d["coordinates"], axis=1)[inner].mean())))
-    return history
-
-
 def cmd_shell_stop(args):
     """Imploding shell: the inner surface (nodes at radius --origin at t = 0)
     stops at --target within --tol (absolute); the stopping radius is the
     smallest mean radius over the dumps."""
     import numpy as np
-    import dump
     target = args.target
     if args.reference:
         wd_ref = os.path.join(args.workdir, "reference")

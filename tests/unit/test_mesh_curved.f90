@@ -7,7 +7,8 @@
 !> every interior face shared by two hexes with opposite orientation and the
 !> boundary exactly the union of the sets; spec validation messages.
 program test_mesh_curved
-  use core_kinds, only: rk
+  use core_kinds, only: rk, i8
+  use core_sort, only: sort_order
   use core_status, only: status_t
   use mesh_geometry, only: hex_volume, quad_vector_area, HEX_FACE_NODES
   use mesh_global, only: global_mesh_t
@@ -527,7 +528,7 @@ contains
     integer, allocatable :: order(:)
     integer :: a, c
     key = matmul(DIRECTION, mesh%coordinates)
-    call sort_reals(key, order)
+    call sort_order(key, order)
     pairs = 0
     do a = 1, mesh%nnode
       do c = a + 1, mesh%nnode
@@ -554,7 +555,7 @@ contains
         keys(:, 6 * (z - 1) + f) = sort4(int(mesh%connectivity(HEX_FACE_NODES(:, f), z)))
       end do
     end do
-    call sort_keys(keys, order)
+    call sort_order(int(keys, i8), order)
     bad_share = 0
     bad_pair = 0
     a = 1
@@ -773,103 +774,6 @@ contains
       s(j + 1) = t
     end do
   end function sort4
-
-  !> Order of the columns of keys, lexicographic (merge sort).
-  subroutine sort_keys(keys, order)
-    integer, intent(in) :: keys(:, :)
-    integer, allocatable, intent(out) :: order(:)
-    integer, allocatable :: work(:)
-    integer :: n, width, low, middle, high, i, j, k
-    logical :: take_left
-    n = size(keys, 2)
-    allocate(order(n), work(n))
-    order = [(i, i = 1, n)]
-    width = 1
-    do while (width < n)
-      low = 1
-      do while (low <= n)
-        middle = min(low + width - 1, n)
-        high = min(low + 2 * width - 1, n)
-        i = low
-        j = middle + 1
-        do k = low, high
-          take_left = .false.
-          if (i <= middle) then
-            if (j > high) then
-              take_left = .true.
-            else
-              take_left = .not. key_less(keys(:, order(j)), keys(:, order(i)))
-            end if
-          end if
-          if (take_left) then
-            work(k) = order(i)
-            i = i + 1
-          else
-            work(k) = order(j)
-            j = j + 1
-          end if
-        end do
-        low = low + 2 * width
-      end do
-      order = work
-      width = 2 * width
-    end do
-  end subroutine sort_keys
-
-  pure logical function key_less(a, b)
-    integer, intent(in) :: a(:), b(:)
-    integer :: i
-    key_less = .false.
-    do i = 1, size(a)
-      if (a(i) /= b(i)) then
-        key_less = a(i) < b(i)
-        return
-      end if
-    end do
-  end function key_less
-
-  !> Order of reals (merge sort through sort_keys on their rank would be
-  !> overkill: a plain merge sort on the values).
-  subroutine sort_reals(key, order)
-    real(rk), intent(in) :: key(:)
-    integer, allocatable, intent(out) :: order(:)
-    integer, allocatable :: work(:)
-    integer :: n, width, low, middle, high, i, j, k
-    logical :: take_left
-    n = size(key)
-    allocate(order(n), work(n))
-    order = [(i, i = 1, n)]
-    width = 1
-    do while (width < n)
-      low = 1
-      do while (low <= n)
-        middle = min(low + width - 1, n)
-        high = min(low + 2 * width - 1, n)
-        i = low
-        j = middle + 1
-        do k = low, high
-          take_left = .false.
-          if (i <= middle) then
-            if (j > high) then
-              take_left = .true.
-            else
-              take_left = key(order(i)) <= key(order(j))
-            end if
-          end if
-          if (take_left) then
-            work(k) = order(i)
-            i = i + 1
-          else
-            work(k) = order(j)
-            j = j + 1
-          end if
-        end do
-        low = low + 2 * width
-      end do
-      order = work
-      width = 2 * width
-    end do
-  end subroutine sort_reals
 
   pure function cross(a, b) result(c)
     real(rk), intent(in) :: a(3), b(3)

@@ -40,6 +40,8 @@ import sys
 
 import numpy as np
 
+from impact3d_tools import history
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DECKS = os.path.join(HERE, "..", "..", "decks")
 AREA = 1.0e-4  # 0.01 x 0.01 cm, from the decks
@@ -85,10 +87,7 @@ def run(a, deck_text, wd):
     if p.returncode != 0:
         check("run in %s exits 0" % wd, False, (p.stdout + p.stderr)[-1500:])
         return None
-    with open(os.path.join(wd, "history.txt")) as f:
-        names = f.readline().split()[1:]
-        rows = np.array([[float(v) for v in line.split()] for line in f if line.strip()])
-    return {n: rows[:, i] for i, n in enumerate(names)}
+    return history.columns(wd)
 
 
 def main():

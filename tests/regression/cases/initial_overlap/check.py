@@ -37,6 +37,8 @@ import sys
 import h5py
 import numpy as np
 
+from impact3d_tools import history as impact3d_history
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 OVERLAP = 0.05   # cm, from the deck
 AL_ZONE = 0.1    # cm, Al zone size: the default tolerance is 5% of it
@@ -50,10 +52,7 @@ def check(name, ok, detail=""):
 
 
 def history(wd):
-    with open(os.path.join(wd, "history.txt")) as f:
-        names = f.readline().split()[1:]
-        rows = np.array([[float(v) for v in line.split()] for line in f if line.strip()])
-    return {n: rows[:, i] for i, n in enumerate(names)}
+    return impact3d_history.columns(wd)
 
 
 def main():
