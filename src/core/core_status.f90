@@ -16,6 +16,8 @@ module core_status
     procedure :: ok => status_ok
     procedure :: clear => status_clear
     procedure :: forget => status_forget
+    procedure :: add_capped => status_add_capped
+    procedure :: add_more => status_add_more
   end type status_t
 
 contains
@@ -28,6 +30,28 @@ contains
     this%count = this%count + 1
     if (this%count <= MAX_MESSAGES) this%messages(this%count) = text
   end subroutine status_add
+
+  !> One of many problems of a kind (bad elements of a mesh file): n counts
+  !> them; only the first cap are recorded, add_more summarises the rest.
+  subroutine status_add_capped(this, n, cap, text)
+    class(status_t), intent(inout) :: this
+    integer, intent(inout) :: n
+    integer, intent(in) :: cap
+    character(len=*), intent(in) :: text
+    n = n + 1
+    if (n <= cap) call this%add(text)
+  end subroutine status_add_capped
+
+  !> The problems of a kind beyond the first cap, as one message.
+  subroutine status_add_more(this, prefix, n, cap, what)
+    class(status_t), intent(inout) :: this
+    character(len=*), intent(in) :: prefix, what
+    integer, intent(in) :: n, cap
+    character(len=16) :: more
+    if (n <= cap) return
+    write(more, '(i0)') n - cap
+    call this%add(prefix//'and '//trim(more)//' more '//what)
+  end subroutine status_add_more
 
   !> True when no problem was recorded.
   logical function status_ok(this)

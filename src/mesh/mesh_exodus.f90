@@ -16,6 +16,7 @@ module mesh_exodus
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use core_kinds, only: rk, ik
   use core_status, only: status_t
+  use core_text, only: itoa => to_text
   use mesh_geometry, only: hex_volume
   use mesh_global, only: global_mesh_t, NAME_LEN
   implicit none
@@ -162,10 +163,10 @@ contains
     nbad = 0
     do n = 1, nnode
       if (.not. (ieee_is_finite(xc(n)) .and. ieee_is_finite(yc(n)) .and. ieee_is_finite(zc(n)))) &
-          call report(status, prefix, nbad, 'node '//itoa(n)//' has a coordinate that is '// &
+          call status%add_capped(nbad, MAX_REPORT, prefix//'node '//itoa(n)//' has a coordinate that is '// &
           'not a finite number')
     end do
-    call report_more(status, prefix, nbad, 'nodes with non-finite coordinates')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'nodes with non-finite coordinates')
 
     ! Element blocks: names, types, connectivity.
     if (allocated(block_names)) deallocate(block_names)
@@ -245,11 +246,11 @@ contains
       mesh%connectivity(:, z) = int(new_id(conn_all(:, z)), ik)
       mesh%zone_block(z) = int(zone_of_block(z), ik)
       if (.not. hex_volume(mesh%coordinates(:, mesh%connectivity(:, z))) > 0.0_rk) &
-          call report(status, prefix, nbad, 'element '//itoa(z)//' of block '''// &
+          call status%add_capped(nbad, MAX_REPORT, prefix//'element '//itoa(z)//' of block '''// &
           trim(block_names(zone_of_block(z)))//''' has a volume <= 0 (nodes not in the '// &
           'Exodus HEX8 order, or a degenerate element)')
     end do
-    call report_more(status, prefix, nbad, 'elements with a volume <= 0')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'elements with a volume <= 0')
 
     ! Side sets.
     allocate(mesh%set_start(nsideset + 1))
@@ -288,7 +289,7 @@ contains
       do k = nface + 1, nface + nside
         if (mesh%set_zone(k) < 1 .or. mesh%set_zone(k) > nelem .or. mesh%set_face(k) < 1 .or. &
             mesh%set_face(k) > 6) then
-          call report(status, prefix, nbad, 'side set '''//trim(set_names(s))//''': entry '// &
+          call status%add_capped(nbad, MAX_REPORT, prefix//'side set '''//trim(set_names(s))//''': entry '// &
               itoa(k - nface)//' names element '//itoa(int(mesh%set_zone(k)))//', side '// &
               itoa(int(mesh%set_face(k)))//' (elements are 1..'//itoa(nelem)// &
               ', sides of a HEX8 1..6)')
@@ -296,7 +297,7 @@ contains
           mesh%set_face(k) = int(EXODUS_SIDE_FACE(mesh%set_face(k)), ik)
         end if
       end do
-      call report_more(status, prefix, nbad, 'bad entries of side set '''// &
+      call status%add_more(prefix, nbad, MAX_REPORT, 'bad entries of side set '''// &
           trim(set_names(s))//'''')
       mesh%set_start(s + 1) = nface + nside + 1
       deallocate(elem, side)
@@ -356,31 +357,5 @@ contains
     clean = text
     if (k > 0) clean = text(1:k - 1)
   end function c_text
-
-  !> Per-element problem: the first MAX_REPORT go to status, the rest are counted.
-  subroutine report(status, prefix, n, text)
-    type(status_t), intent(inout) :: status
-    character(len=*), intent(in) :: prefix, text
-    integer, intent(inout) :: n
-    n = n + 1
-    if (n <= MAX_REPORT) call status%add(prefix//text)
-  end subroutine report
-
-  !> Summary of the problems beyond MAX_REPORT.
-  subroutine report_more(status, prefix, n, what)
-    type(status_t), intent(inout) :: status
-    character(len=*), intent(in) :: prefix, what
-    integer, intent(in) :: n
-    if (n > MAX_REPORT) call status%add(prefix//'and '//itoa(n - MAX_REPORT)//' more '//what)
-  end subroutine report_more
-
-  !> Decimal text of an integer.
-  pure function itoa(value) result(text)
-    integer, intent(in) :: value
-    character(len=:), allocatable :: text
-    character(len=16) :: buffer
-    write(buffer, '(i0)') value
-    text = trim(buffer)
-  end function itoa
 
 end module mesh_exodus

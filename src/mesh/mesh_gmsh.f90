@@ -779,11 +779,11 @@ contains
     nbad = 0
     do z = 1, data%nhex
       if (data%hex_group(z) == 0) then
-        call report(status, prefix, nbad, 'hexahedron '//i8toa(data%hex_tag(z))// &
+        call status%add_capped(nbad, MAX_REPORT, prefix//'hexahedron '//i8toa(data%hex_tag(z))// &
             ' is in no 3D physical group (every zone needs a block: define Physical Volumes)')
       end if
     end do
-    call report_more(status, prefix, nbad, 'hexahedra in no 3D physical group')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'hexahedra in no 3D physical group')
 
     ! Nodes: file index of every tag, then compact ids of those used by hexahedra.
     allocate(node_keys(1, data%nnode))
@@ -792,11 +792,11 @@ contains
     nbad = 0
     do i = 2, data%nnode
       if (node_keys(1, node_order(i)) == node_keys(1, node_order(i - 1))) then
-        call report(status, prefix, nbad, 'node tag '//i8toa(node_keys(1, node_order(i)))// &
+        call status%add_capped(nbad, MAX_REPORT, prefix//'node tag '//i8toa(node_keys(1, node_order(i)))// &
             ' appears more than once in $Nodes')
       end if
     end do
-    call report_more(status, prefix, nbad, 'repeated node tags')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'repeated node tags')
     allocate(used(data%nnode), new_id(data%nnode))
     used = .false.
     nbad = 0
@@ -804,14 +804,14 @@ contains
       do k = 1, 8
         p = find_tag(node_keys, node_order, data%hex_node(k, z))
         if (p == 0) then
-          call report(status, prefix, nbad, 'hexahedron '//i8toa(data%hex_tag(z))// &
+          call status%add_capped(nbad, MAX_REPORT, prefix//'hexahedron '//i8toa(data%hex_tag(z))// &
               ' refers to node '//i8toa(data%hex_node(k, z))//', which is not in $Nodes')
         else
           used(p) = .true.
         end if
       end do
     end do
-    call report_more(status, prefix, nbad, 'unknown node tags in hexahedra')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'unknown node tags in hexahedra')
     if (nbad > 0) return
 
     new_id = 0
@@ -833,12 +833,12 @@ contains
     do i = 1, data%nnode
       if (new_id(i) > 0) then
         if (.not. all(ieee_is_finite(data%node_xyz(:, i)))) then
-          call report(status, prefix, nbad, 'node '//i8toa(data%node_tag(i))// &
+          call status%add_capped(nbad, MAX_REPORT, prefix//'node '//i8toa(data%node_tag(i))// &
               ' has a coordinate that is not a finite number')
         end if
       end if
     end do
-    call report_more(status, prefix, nbad, 'nodes with non-finite coordinates')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'nodes with non-finite coordinates')
     if (nbad > 0) return
     do z = 1, data%nhex
       do k = 1, 8
@@ -858,12 +858,12 @@ contains
     nbad = 0
     do i = 2, mesh%nzone
       if (all(keys(:, order(i)) == keys(:, order(i - 1)))) then
-        call report(status, prefix, nbad, 'hexahedra '//i8toa(data%hex_tag(order(i - 1)))// &
+        call status%add_capped(nbad, MAX_REPORT, prefix//'hexahedra '//i8toa(data%hex_tag(order(i - 1)))// &
             ' and '//i8toa(data%hex_tag(order(i)))//' have the same nodes (is a volume in '// &
             'several 3D physical groups?)')
       end if
     end do
-    call report_more(status, prefix, nbad, 'repeated hexahedra')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'repeated hexahedra')
     deallocate(keys, order)
 
     ! Orientation: Gmsh and impact3d share the node order, so a volume <= 0 is an error.
@@ -872,12 +872,12 @@ contains
       volume = hex_volume(mesh%coordinates(:, mesh%connectivity(:, z)))
       if (volume <= 0.0_rk) then
         write(text, '(es12.4)') volume
-        call report(status, prefix, nbad, 'hexahedron '//i8toa(data%hex_tag(z))// &
+        call status%add_capped(nbad, MAX_REPORT, prefix//'hexahedron '//i8toa(data%hex_tag(z))// &
             ' has volume '//trim(adjustl(text))//' <= 0: its nodes are inverted or '// &
             'degenerate (impact3d does not reorder them)')
       end if
     end do
-    call report_more(status, prefix, nbad, 'hexahedra with volume <= 0')
+    call status%add_more(prefix, nbad, MAX_REPORT, 'hexahedra with volume <= 0')
 
     call build_sets(data, prefix, node_keys, node_order, new_id, set_tags, set_names, mesh, &
         status)
@@ -923,7 +923,7 @@ contains
         file_index = find_tag(node_keys, node_order, data%quad_node(k, q))
         if (file_index == 0) then
           unknown = .true.
-          call report(status, prefix, nbad_node, 'quadrilateral '//i8toa(data%quad_tag(q))// &
+          call status%add_capped(nbad_node, MAX_REPORT, prefix//'quadrilateral '//i8toa(data%quad_tag(q))// &
               ' refers to node '//i8toa(data%quad_node(k, q))//', which is not in $Nodes')
           nodes(k) = 0
         else
@@ -949,14 +949,14 @@ contains
         end do
       end if
       if (best == 0) then
-        call report(status, prefix, nbad_face, 'quadrilateral '//i8toa(data%quad_tag(q))// &
+        call status%add_capped(nbad_face, MAX_REPORT, prefix//'quadrilateral '//i8toa(data%quad_tag(q))// &
             ' of face set '''//trim(set_names(quad_set(q)))//''' matches no hexahedron face')
       else
         quad_face(q) = best
       end if
     end do
-    call report_more(status, prefix, nbad_node, 'unknown node tags in quadrilaterals')
-    call report_more(status, prefix, nbad_face, 'quadrilaterals matching no hexahedron face')
+    call status%add_more(prefix, nbad_node, MAX_REPORT, 'unknown node tags in quadrilaterals')
+    call status%add_more(prefix, nbad_face, MAX_REPORT, 'quadrilaterals matching no hexahedron face')
 
     ! CSR by set, sorted by (zone, face) within each set, repeats removed.
     mesh%nset = nset
@@ -1083,23 +1083,6 @@ contains
       end do
     end do
   end subroutine group_names
-
-  !> Per-element problem: the first MAX_REPORT go to status, the rest are counted.
-  subroutine report(status, prefix, n, text)
-    type(status_t), intent(inout) :: status
-    character(len=*), intent(in) :: prefix, text
-    integer, intent(inout) :: n
-    n = n + 1
-    if (n <= MAX_REPORT) call status%add(prefix//text)
-  end subroutine report
-
-  !> Summary of the problems beyond MAX_REPORT.
-  subroutine report_more(status, prefix, n, what)
-    type(status_t), intent(inout) :: status
-    character(len=*), intent(in) :: prefix, what
-    integer, intent(in) :: n
-    if (n > MAX_REPORT) call status%add(prefix//'and '//itoa(n - MAX_REPORT)//' more '//what)
-  end subroutine report_more
 
   !> Sort key of a face or element: its node ids (an even number of them, each
   !> in 0..2**31-1) in increasing order, packed two by two.
