@@ -72,9 +72,12 @@ contains
         status, offsets, bc%symmetry_planes)
     if (.not. status%ok()) return
     call global%free()
+    allocate(state%contact_pair_work(ct%npair), source=0.0_rk)
     if (len_trim(restart) > 0) then
       call timers%start('restart read')
       call dump_read(restart, mesh, state, status)
+      ! The contact work of each interface goes on from the dump's.
+      if (ct%npair > 0) ct%pairs(:)%work = state%contact_pair_work
       call timers%stop('restart read')
     end if
   end subroutine setup_run

@@ -228,16 +228,21 @@ contains
   !> segment gets the opposite momentum times its weight (the weights sum
   !> to 1): records keyed after every put-back record (key > nall), which
   !> dam_forces adds to the master's velocity as momentum.
-  subroutine dam_put_back(ct, p, k, dt, vm, out)
+  subroutine dam_put_back(ct, p, k, dt, vm, um, out)
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: k !< the interface's number
     real(rk), intent(in) :: dt !< the stage's step
     real(rk), intent(in) :: vm(:, :) !< (3, ncn) matched velocities of the local set
+    real(rk), intent(in) :: um(:, :) !< (3, ncn) their matching normals (0: not matched)
     type(records_t), intent(inout) :: out !< nv = 3: the slave's final velocity
     real(rk) :: nrm(3), target, pen, pen_max, pen_sq, sum_force, vnew(3), vmi(3), dv(3)
-    integer :: q, n, c, active, npen
+    real(rk) :: defect(3), vput(3)
+    integer, allocatable :: group(:)
+    integer :: ngroup
+    integer :: q, n, c, e, active, npen
 
+    allocate(group(16))
     active = 0
     npen = 0
     pen_max = 0.0_rk
@@ -254,6 +259,7 @@ contains
             p%primary(q)%segment)), nrm)
       end do
       vnew = dam_put_back_velocity(vm(:, n), nrm, target)
+      vput = vnew
       if (p%spec%friction > 0.0_rk) then
         vmi = 0.0_rk
         do c = 1, 4
@@ -269,6 +275,41 @@ contains
         end do
       end if
       call add_record(out, ct%all_of(n), k, int(ct%all_of(n), i8), vnew)
+      ! Momentum (docs/contact.md, 6, step 4b): each master's matched change is
+      ! the sum over its slaves of w m_s (v_s - v_m).u u (w the exchange
+      ! weight, u the master's merged normal, v_m its matched velocity); the
+      ! slave's own change is m_s (vnew - v_s), along its own normal and
+      ! with the RBF weights. What the two leave over (the defect) is taken
+      ! off the slave and its masters as one velocity change of them all,
+      ! so together they gain no momentum and their relative velocities,
+      ! which the matching set, do not change. (In self-contact a slave is
+      ! a master too and its matched velocity is not its free one: left as
+      ! it is.)
+      if (surface_node_index(p%b, int(n, ik)) == 0) then
+        defect = ct%mass(n) * (vput - vm(:, n))
+        ngroup = 0
+        if (p%ex_start(q + 1) > p%ex_start(q)) then
+          do e = p%ex_start(q), p%ex_start(q + 1) - 1
+            c = p%ex_master(e)
+            defect = defect + (p%ex_real(2, e) * ct%mass(n) * dot_product(vm(:, n) - &
+                vm(:, c), um(:, c))) * um(:, c)
+            if (.not. any(group(:ngroup) == c)) call join_group(c)
+          end do
+        else
+          ! No facet overlap (the slave beside the master's edge), so
+          ! nothing was exchanged: the group is the primary segment.
+          do c = 1, 4
+            if (.not. any(group(:ngroup) == p%b%segments(c, p%primary(q)%segment))) &
+                call join_group(p%b%segments(c, p%primary(q)%segment))
+          end do
+        end if
+        call join_group(n)
+        dv = -defect / sum(ct%mass(group(:ngroup)))
+        do c = 1, ngroup
+          call add_record(out, ct%all_of(group(c)), k, 5_i8 * int(ct%nall, i8) + &
+              65536_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), ct%mass(group(c)) * dv)
+        end do
+      end if
       sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &
           ct%f(:, n), nrm), 0.0_rk)
       pen = -p%primary(q)%gap
@@ -283,6 +324,21 @@ contains
     p%sums%pen_max = pen_max
     p%sums%pen_sq = pen_sq
     p%sums%weight = real(npen, rk)
+
+  contains
+
+    subroutine join_group(node)
+      integer, intent(in) :: node
+      integer, allocatable :: grown(:)
+      if (ngroup == size(group)) then
+        allocate(grown(2 * ngroup))
+        grown(:ngroup) = group(:ngroup)
+        call move_alloc(grown, group)
+      end if
+      ngroup = ngroup + 1
+      group(ngroup) = node
+    end subroutine join_group
+
   end subroutine dam_put_back
 
   !> DAM at the owners, first round: the exchanged mass, force and momentum
@@ -292,7 +348,7 @@ contains
     type(contact_t), intent(in) :: ct
     type(records_t), intent(in) :: r
     real(rk), intent(in) :: v_old(:, :), force(:, :), dt
-    real(rk), intent(out) :: vmatch(:, :, :)
+    real(rk), intent(out) :: vmatch(:, :, :) !< (1:3) velocity, (4:6) matching normal
     logical, intent(out) :: touched(:, :)
     real(rk), allocatable :: mbar(:, :), fbar(:, :, :), pbar(:, :, :), nmaster(:, :, :)
     real(rk) :: unit(3), vn, mass
@@ -325,12 +381,14 @@ contains
       l = ct%own_local(i)
       mass = ct%all_mass(ct%own_contact(i))
       do k = 1, ct%npair
-        vmatch(:, i, k) = v_old(:, l) + dt * force(:, l) / mass
+        vmatch(1:3, i, k) = v_old(:, l) + dt * force(:, l) / mass
+        vmatch(4:6, i, k) = 0.0_rk
         if (.not. touched(i, k)) cycle
         if (.not. norm2(nmaster(:, i, k)) > 0.0_rk) cycle
         unit = nmaster(:, i, k) / norm2(nmaster(:, i, k))
         vn = dam_merged_normal_velocity(mbar(i, k), pbar(:, i, k), fbar(:, i, k), unit, dt)
-        vmatch(:, i, k) = vmatch(:, i, k) + (vn - dot_product(vmatch(:, i, k), unit)) * unit
+        vmatch(1:3, i, k) = vmatch(1:3, i, k) + (vn - dot_product(vmatch(1:3, i, k), unit)) * unit
+        vmatch(4:6, i, k) = unit
       end do
     end do
   end subroutine match_masters
@@ -349,7 +407,7 @@ contains
     real(rk), allocatable :: vfinal(:, :, :)
     real(rk) :: mass
     integer :: i, k, j, l
-    allocate(vfinal, source=vmatch)
+    allocate(vfinal, source=vmatch(1:3, :, :))
     do j = 1, r%n
       i = int(r%id(1, j))
       k = int(r%id(2, j))

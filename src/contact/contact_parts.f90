@@ -531,25 +531,26 @@ contains
     end do
   end subroutine gather_nodes
 
-  !> Owned values (3, nown, npair) to the local sets (3, ncn, npair).
+  !> Owned values (nc, nown, npair) to the local sets (nc, ncn, npair).
   subroutine scatter_nodes(ct, owned, local)
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: owned(:, :, :)
     real(rk), allocatable, intent(out) :: local(:, :, :)
     real(rk), allocatable :: send(:), recv(:)
-    integer :: j, nv, k, i
-    nv = 3 * ct%npair
-    allocate(send(nv * size(ct%send_own)), local(3, ct%ncn, ct%npair))
+    integer :: j, nv, nc, k, i
+    nc = size(owned, 1)
+    nv = nc * ct%npair
+    allocate(send(nv * size(ct%send_own)), local(nc, ct%ncn, ct%npair))
     do j = 1, size(ct%send_own)
       do k = 1, ct%npair
-        send(nv * (j - 1) + 3 * k - 2:nv * (j - 1) + 3 * k) = owned(:, ct%send_own(j), k)
+        send(nv * (j - 1) + nc * (k - 1) + 1:nv * (j - 1) + nc * k) = owned(:, ct%send_own(j), k)
       end do
     end do
     call par_exchange(send, nv * ct%send_count, recv, nv * ct%recv_count)
     do j = 1, ct%ncn
       i = ct%recv_local(j)
       do k = 1, ct%npair
-        local(:, i, k) = recv(nv * (j - 1) + 3 * k - 2:nv * (j - 1) + 3 * k)
+        local(:, i, k) = recv(nv * (j - 1) + nc * (k - 1) + 1:nv * (j - 1) + nc * k)
       end do
     end do
   end subroutine scatter_nodes

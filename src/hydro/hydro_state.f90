@@ -67,6 +67,9 @@ module hydro_state
     integer(i8) :: cycle = 0 !< cycles done
     real(rk) :: boundary_work = 0.0_rk !< work done on the body by boundaries (diagnostic)
     real(rk) :: contact_work = 0.0_rk !< work of the contact forces (diagnostic)
+    !> the same per contact interface (its history column NAME_work), kept
+    !> here so that dumps carry it across a restart
+    real(rk), allocatable :: contact_pair_work(:)
     real(rk) :: energy_initial = 0.0_rk !< total energy at t = 0 (diagnostic)
   end type state_t
 

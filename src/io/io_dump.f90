@@ -5,6 +5,7 @@ module io_dump
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
   use core_units, only: unit_of
+  use core_text, only: to_text
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
   use io_h5, only: hid_t, h5_create_file, h5_open_file, h5_close_file, h5_write_real_rows, &
@@ -168,6 +169,15 @@ contains
     call h5_write_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
     call h5_write_attr_real(file, '/run', 'contact_work', state%contact_work, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    ! Each contact interface's work (a sum over the ranks' nodes, like the
+    ! total: its last bits depend on the rank count, hence here).
+    if (allocated(state%contact_pair_work)) then
+      do k = 1, size(state%contact_pair_work)
+        call h5_write_attr_real(file, '/run', 'contact_work_'//to_text(k), &
+            state%contact_pair_work(k), e, msg)
+        if (e /= 0 .and. ierr == 0) ierr = e
+      end do
+    end if
     call h5_write_attr_real(file, '/run', 'energy_initial', state%energy_initial, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_write_attr_string(file, '/run', 'reason', info%reason, e, msg)
@@ -473,7 +483,7 @@ contains
     type(state_t), intent(inout) :: state
     type(status_t), intent(inout) :: status
     integer(hid_t) :: file
-    integer :: ierr, e, nno, nzo, version, icycle, ncomp
+    integer :: ierr, e, nno, nzo, version, icycle, ncomp, k
     integer(i8) :: node_first, zone_first, nglobal
     character(len=400) :: msg
     real(rk), allocatable :: nblock3(:, :), nblock1(:, :), zblock(:, :), zlocal(:, :)
@@ -521,6 +531,13 @@ contains
     state%cycle = int(rcycle, i8)
     call h5_read_attr_real(file, '/restart', 'dt_previous', state%dt_previous, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    if (allocated(state%contact_pair_work)) then
+      do k = 1, size(state%contact_pair_work)
+        call h5_read_attr_real(file, '/run', 'contact_work_'//to_text(k), &
+            state%contact_pair_work(k), e, msg)
+        if (e /= 0 .and. ierr == 0) ierr = e
+      end do
+    end if
     call h5_read_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
     call h5_read_attr_real(file, '/run', 'contact_work', state%contact_work, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e

@@ -48,6 +48,7 @@ contains
     if (ct%npair > 0) then
       state%contact_work = state%contact_work + par_sum(contact_work)
       call contact_step_end(ct)
+      state%contact_pair_work = ct%pairs(:)%work
     end if
     state%time = plan%land(state%time, dt)
     state%cycle = state%cycle + 1
