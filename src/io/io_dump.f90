@@ -56,8 +56,6 @@ contains
     nzo = mesh%nzone_owned
     node_first = mesh%node_io%first - 1
     zone_first = mesh%zone_io%first - 1
-    allocate(nblock3(3, mesh%node_io%nblock), nblock1(1, mesh%node_io%nblock))
-    allocate(zblock(1, mesh%zone_io%nblock), zlocal(1, nzo))
     call h5_create_file(path, par_comm_handle(), par_info_null_handle(), file, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     if (.not. agreed()) return
@@ -73,19 +71,19 @@ contains
     call h5_write_attr_string(file, '/', 'units', units, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
 
-    ! Mesh.
-    call mesh%node_io%to_block(state%node_position(:, 1:nno), nblock3)
-    call h5_write_real_rows(file, '/mesh/coordinates', nblock3, mesh%nnode_global, &
-        node_first, e, msg)
-    if (e /= 0 .and. ierr == 0) ierr = e
-    call units_of('/mesh/coordinates', 'length')
-    allocate(connectivity(8, nzo), cblock(8, mesh%zone_io%nblock))
-    do z = 1, nzo
-      do k = 1, 8
-        connectivity(k, z) = int(mesh%node_gid(mesh%zone_node(k, z)) - 1, ik)
+    ! Mesh. The connectivity first, before the other buffers exist, and
+    ! redistributed four corners at a time: the largest transient of a dump
+    ! (the global ids, the exchange's two buffers and the block) stays below
+    ! the set-up's peak memory (docs/benchmarks.md, memory).
+    allocate(cblock(8, mesh%zone_io%nblock))
+    allocate(connectivity(4, nzo))
+    do k = 1, 5, 4
+      do z = 1, nzo
+        connectivity(:, z) = int(mesh%node_gid(mesh%zone_node(k:k + 3, z)) - 1, ik)
       end do
+      call mesh%zone_io%to_block_int(connectivity, cblock(k:k + 3, :))
     end do
-    call mesh%zone_io%to_block_int(connectivity, cblock)
+    deallocate(connectivity)
     call h5_write_int_rows(file, '/mesh/connectivity', cblock, mesh%nzone_global, zone_first, &
         e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -93,6 +91,14 @@ contains
     call h5_write_int_vector(file, '/mesh/block', cblock(1, :), mesh%nzone_global, &
         zone_first, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    deallocate(cblock)
+    allocate(nblock3(3, mesh%node_io%nblock), nblock1(1, mesh%node_io%nblock))
+    allocate(zblock(1, mesh%zone_io%nblock), zlocal(1, nzo))
+    call mesh%node_io%to_block(state%node_position(:, 1:nno), nblock3)
+    call h5_write_real_rows(file, '/mesh/coordinates', nblock3, mesh%nnode_global, &
+        node_first, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    call units_of('/mesh/coordinates', 'length')
     call h5_write_attr_string(file, '/mesh', 'block_names', block_names, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
 
