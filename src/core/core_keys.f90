@@ -4,11 +4,15 @@
 !> (unknown keys, value types), `impact3d --keys` prints them and the user
 !> guide's key tables are checked against that print-out.
 module core_keys
+  use core_kinds, only: rk
   implicit none
   private
   public :: key_names, key_types, key_line
 
   integer, parameter, public :: KEY_LEN = 64 !< a key name as the deck scan holds it
+  !> A real key's value before the deck's is read: still this after the read
+  !> means the deck did not give the key.
+  real(rk), parameter, public :: UNSET = -huge(1.0_rk)
 
   !> One deck key. type: 'r' real, 'i' integer, 'l' logical, 'c' character
   !> string; default as the user guide gives it ('required' when there is

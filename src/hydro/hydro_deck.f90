@@ -8,7 +8,7 @@ module hydro_deck
   use core_kinds, only: rk
   use core_status, only: status_t
   use core_text, only: to_lower
-  use core_keys, only: key_t
+  use core_keys, only: UNSET, key_t
   use parallel_env, only: par_rank
   use mesh_global, only: NAME_LEN
   use material_table, only: material_t, EOS_MIE_GRUNEISEN
@@ -16,7 +16,7 @@ module hydro_deck
   use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE, &
       BC_WALL
-  use hydro_initial, only: region_t, UNSET
+  use hydro_initial, only: region_t
   implicit none
   private
   public :: read_hydro, read_region, read_boundary

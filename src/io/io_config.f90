@@ -7,7 +7,7 @@ module io_config
   use core_kinds, only: rk
   use core_status, only: status_t
   use core_text, only: to_lower, join
-  use core_keys, only: key_t
+  use core_keys, only: UNSET, key_t
   use core_path, only: PATH_LEN
   use core_units, only: units_valid, UNITS_CGSUS, UNITS_LIST
   use mesh_global, only: NAME_LEN
@@ -16,7 +16,7 @@ module io_config
   use material_deck, only: block_spec_t
   use hydro_state, only: hydro_options_t
   use hydro_boundary, only: boundary_spec_t
-  use hydro_initial, only: region_t, UNSET
+  use hydro_initial, only: region_t
   use contact_enforce, only: contact_spec_t
   implicit none
   private

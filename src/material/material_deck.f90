@@ -7,7 +7,7 @@ module material_deck
   use core_kinds, only: rk
   use core_status, only: status_t
   use core_text, only: to_lower
-  use core_keys, only: key_t, KEY_LEN
+  use core_keys, only: UNSET, key_t, KEY_LEN
   use core_units, only: UNITS_SI, UNITS_NONE, SI_DENSITY, SI_VELOCITY, SI_PRESSURE, &
       SI_SPECIFIC_ENERGY, SI_TIME
   use mesh_global, only: NAME_LEN
@@ -17,9 +17,6 @@ module material_deck
   implicit none
   private
   public :: read_material, check_material_names, read_block
-
-  !> The value of a key not given (as hydro_initial's UNSET).
-  real(rk), parameter :: UNSET = -huge(1.0_rk)
 
   !> A block: zones whose centroid lies in box, made of one material.
   type, public :: block_spec_t

@@ -6,7 +6,7 @@ module mesh_deck
   use core_kinds, only: rk
   use core_status, only: status_t
   use core_text, only: to_lower
-  use core_keys, only: key_t
+  use core_keys, only: UNSET, key_t
   use core_path, only: path_from_deck, path_directory, path_absolute, PATH_LEN
   use parallel_env, only: par_rank, par_bcast
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
@@ -15,9 +15,6 @@ module mesh_deck
   implicit none
   private
   public :: read_mesh
-
-  !> The value of a key not given (as hydro_initial's UNSET).
-  real(rk), parameter :: UNSET = -huge(1.0_rk)
 
   !> One &mesh group: a generated or imported mesh part. Parts share no
   !> nodes; several parts make separate bodies (which meet through &contact).
