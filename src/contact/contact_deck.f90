@@ -54,6 +54,7 @@ module contact_deck
 
 contains
 
+  !> The index-th &contact into pair (its defaults are pair's on entry).
   subroutine read_contact(sect, index, pair, status, symmetric_given)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     integer, intent(in) :: index

@@ -82,6 +82,7 @@ module hydro_deck
 
 contains
 
+  !> &hydro into opt (its defaults are opt's on entry).
   subroutine read_hydro(sect, opt, status)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     type(hydro_options_t), intent(inout) :: opt
@@ -125,6 +126,8 @@ contains
     opt%hourglass_coefficient = hourglass_coefficient
   end subroutine read_hydro
 
+  !> The index-th &region into spec; its block is named among blocks, and rank 0
+  !> warns when its density is far from its material's rho0.
   subroutine read_region(sect, index, blocks, materials, materials_read, spec, status)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     integer, intent(in) :: index
@@ -247,6 +250,7 @@ contains
 
   end subroutine read_region
 
+  !> The index-th &boundary into bc.
   subroutine read_boundary(sect, index, bc, status)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     integer, intent(in) :: index

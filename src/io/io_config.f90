@@ -30,7 +30,6 @@ module io_config
       'velocity', 'position', 'pressure', 'density', 'energy', 'stress', 'plastic_strain', &
       'viscosity', 'sound_speed']
 
-
   !> One &probe group: a time history of chosen fields at one node / zone.
   type, public :: probe_spec_t
     character(len=NAME_LEN) :: name = ''
@@ -146,6 +145,7 @@ module io_config
 
 contains
 
+  !> &control into config (run limits, stops, units) and config%hydro (time step).
   subroutine read_control(sect, config, status)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     type(config_t), intent(inout) :: config
@@ -232,6 +232,7 @@ contains
     config%hydro%dvol_max = dvol_max
   end subroutine read_control
 
+  !> &output into out (its defaults are out's on entry).
   subroutine read_output(sect, out, status)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     type(output_options_t), intent(inout) :: out

@@ -106,6 +106,8 @@ module material_deck
 
 contains
 
+  !> The index-th &material into mat: library data (converted to the deck's
+  !> units), then the keys given, then the checks of the EOS and strength model.
   subroutine read_material(sect, index, mat, status, read_ok, units)
     use material_flow_stress, only: steinberg_guinan_t, johnson_cook_t, SG_REFERENCE_TEMPERATURE
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
@@ -444,6 +446,7 @@ contains
     end do
   end subroutine check_material_names
 
+  !> The index-th &block into blocks(index); its material is named among materials.
   subroutine read_block(sect, index, blocks, materials, materials_read, status)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     integer, intent(in) :: index

@@ -111,6 +111,8 @@ module mesh_deck
 
 contains
 
+  !> The index-th of nparts &mesh groups into part; a mesh file is looked for
+  !> relative to the deck's directory (rank 0 looks, every rank is told).
   subroutine read_mesh(sect, index, nparts, part, status, deck_path)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     integer, intent(in) :: index !< this group's place among the &mesh groups
