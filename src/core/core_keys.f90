@@ -7,7 +7,7 @@ module core_keys
   use core_kinds, only: rk
   implicit none
   private
-  public :: key_names, key_types, key_line
+  public :: key_names, key_line
 
   integer, parameter, public :: KEY_LEN = 64 !< a key name as the deck scan holds it
   !> A real key's value before the deck's is read: still this after the read
@@ -37,16 +37,6 @@ contains
       names(k) = keys(k)%name
     end do
   end function key_names
-
-  !> The type codes of a table's keys, one character per key, in table order.
-  pure function key_types(keys) result(types)
-    type(key_t), intent(in) :: keys(:)
-    character(len=size(keys)) :: types
-    integer :: k
-    do k = 1, size(keys)
-      types(k:k) = keys(k)%type
-    end do
-  end function key_types
 
   !> One key as `impact3d --keys` prints it, fields separated by ' | ':
   !> '&group | name | type | default | units | meaning' ('-' for no units).

@@ -8,7 +8,7 @@
 !> key, reason) before any work starts.
 module io_deck
   use core_status, only: status_t
-  use core_keys, only: key_t, key_names, key_types
+  use core_keys, only: key_t, key_names
   use core_text, only: join
   use core_units, only: UNITS_CGSUS
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, value_problem, &
@@ -24,7 +24,7 @@ module io_deck
       OUTPUT_KEYS, PROBE_KEYS
   implicit none
   private
-  public :: deck_read, deck_group_keys, deck_known_keys, deck_key_types, deck_restart_check
+  public :: deck_read, deck_group_keys, deck_known_keys, deck_restart_check
   public :: output_directory_create
   public :: config_t
 
@@ -84,14 +84,6 @@ contains
     keys = key_names(deck_group_keys(group))
   end function deck_known_keys
 
-  !> The type of each key of deck_known_keys(group), in the same order: 'r'
-  !> real, 'i' integer, 'l' logical, 'c' character.
-  function deck_key_types(group) result(types)
-    character(len=*), intent(in) :: group
-    character(len=:), allocatable :: types
-    types = key_types(deck_group_keys(group))
-  end function deck_key_types
-
   !> Read, check and distribute the deck. On return status%count is the same
   !> on every rank; rank 0 holds the messages.
   subroutine deck_read(path, config, status)
@@ -105,7 +97,8 @@ contains
     logical :: found
     type(section_t), allocatable :: sections(:)
     type(skip_t), allocatable :: skips(:)
-    character(len=:), allocatable :: types, problem, guess
+    type(key_t), allocatable :: keys(:)
+    character(len=:), allocatable :: problem, guess
     character(len=KEY_LEN + 20), allocatable :: bad(:)
     character(len=16) :: lnum
 
@@ -147,12 +140,11 @@ contains
     do ig = 1, ngroup
       allocate(skips(ig)%key(max(groups(ig)%nkey, 1)))
       skips(ig)%key = .false.
-      known = deck_known_keys(trim(groups(ig)%name))
-      types = deck_key_types(trim(groups(ig)%name))
+      keys = deck_group_keys(trim(groups(ig)%name))
       do ik = 1, groups(ig)%nkey
-        do k = 1, size(known)
-          if (known(k) /= groups(ig)%key(ik)) cycle
-          problem = value_problem(groups(ig)%value(ik), types(k:k))
+        do k = 1, size(keys)
+          if (keys(k)%name /= groups(ig)%key(ik)) cycle
+          problem = value_problem(groups(ig)%value(ik), keys(k)%type)
           if (len(problem) == 0) exit
           write(lnum, '(i0)') groups(ig)%key_line(ik)
           skips(ig)%key(ik) = .true.
