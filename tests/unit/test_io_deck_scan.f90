@@ -59,8 +59,8 @@ program test_io_deck_scan
   call check_true('null values', value_problem(',,1.0', 'r') == '')
 
   ! Every group's key table: names given once (and not cut short by the
-  ! table's name length), a type, a default and a meaning for each; the names
-  ! the checks use are the table's.
+  ! table's name length), a type, a default and a meaning for each, no '|'
+  ! (the --keys field separator); the names the checks use are the table's.
   do g = 1, size(DECK_GROUPS)
     keys = deck_group_keys(trim(DECK_GROUPS(g)))
     tables_ok = size(keys) > 0 .and. all(deck_known_keys(trim(DECK_GROUPS(g))) == keys%name)
@@ -68,7 +68,8 @@ program test_io_deck_scan
       tables_ok = tables_ok .and. count(keys%name == keys(k)%name) == 1 .and. &
           len_trim(keys(k)%name) < len(keys(k)%name) .and. &
           index('rilc', keys(k)%type) > 0 .and. len_trim(keys(k)%default) > 0 .and. &
-          len_trim(keys(k)%meaning) > 0
+          len_trim(keys(k)%meaning) > 0 .and. index(keys(k)%default, '|') == 0 .and. &
+          index(keys(k)%units, '|') == 0 .and. index(keys(k)%meaning, '|') == 0
     end do
     call check_true('key table of &'//trim(DECK_GROUPS(g)), tables_ok)
   end do
