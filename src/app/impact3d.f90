@@ -4,7 +4,8 @@ program impact3d
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use app_run, only: run_deck, EXIT_OK, EXIT_INPUT
   use parallel_env, only: par_init, par_finalize, par_rank
-  use io_deck, only: deck_known_keys
+  use io_deck, only: deck_group_keys, DECK_GROUPS
+  use core_keys, only: key_t, key_line
   use core_signal, only: signal_install
   use core_exit, only: process_exit
   use core_version, only: IMPACT3D_VERSION
@@ -33,7 +34,7 @@ program impact3d
       if (par_rank() == 0) write(output_unit, '(a)') &
           'usage: impact3d [--check] [--restart dump.h5 [--restart-force]] deck.nml', &
           '  --version        print the version and stop', &
-          '  --keys           list every deck group and key', &
+          '  --keys           list every deck key: group, name, type, default, units, meaning', &
           '  --check          validate the deck and set up the mesh, run nothing', &
           '  --restart F      continue from dump F (same deck and mesh; &control and', &
           '                   &output may change)', &
@@ -87,19 +88,16 @@ program impact3d
   if (code /= EXIT_OK) call process_exit(code)
 contains
 
-  !> Every deck group and its keys, one group per line.
+  !> Every deck key, one per line: '&group | key | type | default | units |
+  !> meaning' (units '-' when there are none), groups in deck order.
   subroutine print_keys()
-    character(len=8), parameter :: groups(10) = [character(len=8) :: 'control', 'hydro', &
-        'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact', 'probe']
-    character(len=64), allocatable :: keys(:)
+    type(key_t), allocatable :: keys(:)
     integer :: g, k
-    do g = 1, size(groups)
-      keys = deck_known_keys(trim(groups(g)))
-      write(output_unit, '(a)', advance='no') '&'//trim(groups(g))//':'
+    do g = 1, size(DECK_GROUPS)
+      keys = deck_group_keys(trim(DECK_GROUPS(g)))
       do k = 1, size(keys)
-        write(output_unit, '(a)', advance='no') ' '//trim(keys(k))
+        write(output_unit, '(a)') key_line(trim(DECK_GROUPS(g)), keys(k))
       end do
-      write(output_unit, '(a)') ''
     end do
   end subroutine print_keys
 

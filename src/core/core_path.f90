@@ -7,6 +7,7 @@ module core_path
   private
   public :: path_from_deck, path_absolute, path_directory
 
+  integer, parameter, public :: PATH_LEN = 256 !< a path as the deck gives it
   integer, parameter :: CWD_LEN = 4096
 
   interface

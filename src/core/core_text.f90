@@ -1,12 +1,13 @@
 !> Numbers as text for messages, the project's one module for it:
 !> to_text(i) for integers (decimal, no blanks), to_text(x) for reals (g0,
 !> no blanks), fixed_text(x, decimals) for reals with a fixed number of
-!> decimals ('0.13', '3600.00').
+!> decimals ('0.13', '3600.00'); to_lower(s) a lower-case copy of a string,
+!> join(words) the words trimmed and separated by ', '.
 module core_text
   use core_kinds, only: rk, i8
   implicit none
   private
-  public :: to_text, fixed_text
+  public :: to_text, fixed_text, to_lower, join
 
   interface to_text
     module procedure int_text, i8_text, real_text
@@ -46,5 +47,29 @@ contains
     write(buffer, form) value
     text = trim(adjustl(buffer))
   end function fixed_text
+
+  !> Lower-case copy of a string.
+  pure function to_lower(text) result(lower)
+    character(len=*), intent(in) :: text
+    character(len=len(text)) :: lower
+    integer :: i, code
+    lower = text
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
+    end do
+  end function to_lower
+
+  !> The words, trimmed, separated by ', '.
+  pure function join(words) result(text)
+    character(len=*), intent(in) :: words(:)
+    character(len=:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, size(words)
+      if (i > 1) text = text//', '
+      text = text//trim(words(i))
+    end do
+  end function join
 
 end module core_text

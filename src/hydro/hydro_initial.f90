@@ -3,6 +3,7 @@
 module hydro_initial
   use core_kinds, only: rk, i8
   use core_status, only: status_t
+  use core_keys, only: UNSET
   use mesh_geometry, only: hex_centroid, hex_volume
   use mesh_local, only: mesh_t
   use material_table, only: material_t, material_energy_from_pressure
@@ -10,9 +11,7 @@ module hydro_initial
   use parallel_env, only: par_allgather, par_size, par_sum
   implicit none
   private
-  public :: initial_apply
-
-  real(rk), parameter, public :: UNSET = -huge(1.0_rk)
+  public :: initial_apply, UNSET
 
   !> One &region group: the zones of a block (0 = any) whose centroid is in box.
   type, public :: region_t

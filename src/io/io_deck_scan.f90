@@ -6,12 +6,14 @@ module io_deck_scan
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use core_kinds, only: rk, i8
   use core_status, only: status_t
+  use core_text, only: to_lower
+  use core_keys, only: KEY_LEN
   implicit none
   private
   public :: deck_scan, to_lower, group_text, value_problem, edit_distance, closest_name
 
   integer, parameter, public :: LINE_LEN = 512
-  integer, parameter, public :: KEY_LEN = 64
+  public :: KEY_LEN
   integer, parameter, public :: VALUE_LEN = 2048
 
   !> One group instance: its name, where it is, and its keys.
@@ -31,18 +33,6 @@ module io_deck_scan
   end type group_instance_t
 
 contains
-
-  !> Lower-case copy of a string.
-  pure function to_lower(text) result(lower)
-    character(len=*), intent(in) :: text
-    character(len=len(text)) :: lower
-    integer :: i, code
-    lower = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
-    end do
-  end function to_lower
 
   pure logical function is_name_char(ch)
     character, intent(in) :: ch

@@ -13,7 +13,7 @@ module io_probe
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
   use parallel_env, only: par_rank, par_size, par_max, par_allgather
-  use io_deck, only: probe_spec_t, PROBE_FIELD_LEN
+  use io_config, only: probe_spec_t, PROBE_FIELD_LEN
   implicit none
   private
   public :: probe_setup, probe_open, probe_sample

@@ -1,12 +1,15 @@
 !> Deck scanning and checking without a run: value texts of the keys, the
 !> type and finiteness check, the did-you-mean guess, the restart comparison
-!> of two decks, and the ETA from the recent rate.
+!> of two decks, the key tables of the deck groups, and the ETA from the
+!> recent rate.
 program test_io_deck_scan
   use core_kinds, only: rk
   use core_status, only: status_t
   use io_deck_scan, only: deck_scan, group_instance_t, value_problem, edit_distance, &
       closest_name, LINE_LEN
-  use io_deck, only: deck_restart_check, deck_known_keys, deck_key_types
+  use io_deck, only: deck_restart_check, deck_known_keys, deck_group_keys, &
+      DECK_GROUPS
+  use core_keys, only: key_t
   use solver_eta, only: eta_t
   use check, only: check_true, check_close, check_summary
   implicit none
@@ -14,10 +17,10 @@ program test_io_deck_scan
   type(group_instance_t), allocatable :: groups(:)
   type(status_t) :: status
   type(eta_t) :: eta
-  integer :: ngroup, g
+  integer :: ngroup, g, k
+  type(key_t), allocatable :: keys(:)
+  logical :: tables_ok
   character(len=*), parameter :: NL = achar(10)
-  character(len=8), parameter :: GROUPS_KNOWN(9) = [character(len=8) :: 'control', 'hydro', &
-      'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact']
   character(len=:), allocatable :: base
 
   ! Value texts: comments and blanks dropped, blanks between items a comma,
@@ -55,11 +58,22 @@ program test_io_deck_scan
   call check_true('string unquoted', index(value_problem('box', 'c'), 'in quotes') > 0)
   call check_true('null values', value_problem(',,1.0', 'r') == '')
 
-  ! Every group's key types match its keys.
-  do g = 1, size(GROUPS_KNOWN)
-    call check_true('types of &'//trim(GROUPS_KNOWN(g)), &
-        len(deck_key_types(trim(GROUPS_KNOWN(g)))) == size(deck_known_keys(trim(GROUPS_KNOWN(g)))))
+  ! Every group's key table: names given once (and not cut short by the
+  ! table's name length), a type, a default and a meaning for each, no '|'
+  ! (the --keys field separator); the names the checks use are the table's.
+  do g = 1, size(DECK_GROUPS)
+    keys = deck_group_keys(trim(DECK_GROUPS(g)))
+    tables_ok = size(keys) > 0 .and. all(deck_known_keys(trim(DECK_GROUPS(g))) == keys%name)
+    do k = 1, size(keys)
+      tables_ok = tables_ok .and. count(keys%name == keys(k)%name) == 1 .and. &
+          len_trim(keys(k)%name) < len(keys(k)%name) .and. &
+          index('rilc', keys(k)%type) > 0 .and. len_trim(keys(k)%default) > 0 .and. &
+          len_trim(keys(k)%meaning) > 0 .and. index(keys(k)%default, '|') == 0 .and. &
+          index(keys(k)%units, '|') == 0 .and. index(keys(k)%meaning, '|') == 0
+    end do
+    call check_true('key table of &'//trim(DECK_GROUPS(g)), tables_ok)
   end do
+  call check_true('no keys for an unknown group', size(deck_group_keys('colour')) == 0)
 
   ! Did you mean.
   call check_true('distance tend t_end', edit_distance('tend', 't_end') == 1)
@@ -68,7 +82,7 @@ program test_io_deck_scan
   call check_true('guess max_cycles', &
       closest_name('max_cycle', deck_known_keys('control')) == 'max_cycles')
   call check_true('no guess for colour', closest_name('colour', deck_known_keys('control')) == '')
-  call check_true('guess control', closest_name('contorl', GROUPS_KNOWN) == 'control')
+  call check_true('guess control', closest_name('contorl', DECK_GROUPS) == 'control')
 
   ! Restart comparison: comments, blanks, key order and &control / &output
   ! may change; anything else is named.
