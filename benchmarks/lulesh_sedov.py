@@ -2,7 +2,7 @@
 """Work-precision of impact3d on LULESH 2.0's own Sedov problem (issue 18).
 
 Usage:
-    /usr/bin/python3 benchmarks/lulesh_sedov.py [--exe build/impact3d]
+    PYTHONPATH=tools /usr/bin/python3 benchmarks/lulesh_sedov.py [--exe build/impact3d]
         [--sizes 15 20 30 45] [--repeats N] [--lulesh /tmp/lulesh/lulesh2.0]
         [--lulesh-src /work/.mirror/LLNL+LULESH/repo] [--no-lulesh]
         [--hydro 'key = value, ...' --label NAME] [--render-only]
@@ -51,11 +51,11 @@ import tempfile
 
 import numpy as np
 
+from impact3d_tools import dump as dumplib
+from impact3d_tools.exact.sedov import Sedov
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-import dump as dumplib  # noqa: E402
-from exact_sedov import Sedov  # noqa: E402
 
 GAMMA = 5.0 / 3.0
 E0 = 4935.9325
@@ -197,8 +197,8 @@ def render(data):
         "the origin zone), symmetry planes at x, y, z = 0, free faces elsewhere, t = 0.01 "
         "(exact shock radius 1.0000013). Decks `problems/sedov_lulesh/sedov_lulesh_{15,20,"
         "30,45}.nml`, every other setting at its default. Regenerate with "
-        "`/usr/bin/python3 benchmarks/lulesh_sedov.py --exe build/impact3d` (it re-renders "
-        "this whole document).")
+        "`PYTHONPATH=tools /usr/bin/python3 benchmarks/lulesh_sedov.py --exe build/impact3d` (it "
+        "re-renders this whole document).")
     add("")
     add("* L1(rho) = sum |rho_i - rho_exact(r_i)| V_i / sum V_i over zones with centroid "
         "radius < 1.1 (centroid = mean of the 8 final node positions, V_i the final "

@@ -85,9 +85,6 @@ import sys
 from impact3d_tools import dump, history
 from impact3d_tools.shapes import inner_radius_history, rod_shape
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-TOOLS = os.path.join(HERE, "..", "..", "tools")
-
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
            OMPI_MCA_rmaps_base_oversubscribe="1")
 results = []
@@ -296,7 +293,7 @@ def cmd_compare(args):
 
 
 def compare_values(dump_path, problem, extra):
-    cmd = ["/usr/bin/python3", os.path.join(TOOLS, "compare.py"), "--problem", problem,
+    cmd = ["/usr/bin/python3", "-m", "impact3d_tools.compare", "--problem", problem,
            dump_path] + list(extra)
     proc = subprocess.run(cmd, capture_output=True, text=True)
     values = {}
@@ -723,9 +720,9 @@ def cmd_relative(args):
         pen = rows[:, header.index(args.pair + "_pen_max")]
         print("largest penetration %.3e" % pen.max())
     if args.radial_penetration:
-        import radial_gap
+        from impact3d_tools import radial
         inner, outer, radius, limit = args.radial_penetration
-        rows = radial_gap.history(wd, int(inner), int(outer), float(radius))
+        rows = radial.history(wd, int(inner), int(outer), float(radius))
         time, worst, direction = max(rows, key=lambda row: row[1])
         check("curved interface: largest radial penetration %.3e (t = %.3f, direction %s) "
               "<= %s" % (worst, time, np.array2string(direction, precision=3), limit),
@@ -736,8 +733,7 @@ def cmd_relative(args):
         # at most the half-angle of a segment, 1 - cos(h / 2R) < 1%; 10% is
         # the bound the contact issue set. Dumps where the ray cast sees
         # less than 1e-4 (round-off-scale overlap) are not compared.
-        import audit_vs_radial
-        ratios = [(t, a / r) for t, r, a in audit_vs_radial.compare(
+        ratios = [(t, a / r) for t, r, a in radial.audit_compare(
             wd, int(inner), int(outer), float(radius)) if r > 1e-4]
         worst_ratio = max((abs(q - 1.0) for _, q in ratios), default=0.0)
         check("audit agrees with the ray cast within 10%% at every dump (worst |ratio - 1| "
@@ -1002,7 +998,7 @@ def cmd_shell_stop(args):
     print("  inner radius history: " + ", ".join("%.0f:%.3f" % h for h in history))
     check("inner surface stops at r = %.4f (t = %.1f) vs %.4f within %.2f"
           % (r_stop, t_stop, target, args.tol), abs(r_stop - target) <= args.tol)
-    import exact_verney
+    from impact3d_tools.exact import verney as exact_verney
     a_stop, t_end, a, t = exact_verney.verney()
     times = np.array([h[0] for h in history])
     radii = np.array([h[1] for h in history])

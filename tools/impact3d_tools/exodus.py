@@ -1,8 +1,7 @@
-#!/usr/bin/python3
 """Convert a Gmsh mesh of 8-node hexahedra to Exodus II, with meshio (Debian
 python3-meshio) and netCDF4 (Debian python3-netcdf4).
 
-Usage: msh_to_exodus.py MESH.msh OUT.exo
+Usage: tools/msh_to_exodus.py MESH.msh OUT.exo, or convert(msh_path, exo_path).
 
 Every named 3D physical group becomes an element block of that name (ids
 1, 2, ... in the order of the physical tags), every named 2D physical group
@@ -27,7 +26,6 @@ written one per physical volume, then with netCDF4:
 """
 
 import os
-import sys
 
 import meshio
 import netCDF4
@@ -111,8 +109,3 @@ def convert(msh_path, exo_path):
           % (exo_path, len(points), len(all_hex), ", ".join(block_names), ", ".join(set_names)))
     return block_names, set_names
 
-
-if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    convert(sys.argv[1], sys.argv[2])

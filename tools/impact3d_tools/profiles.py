@@ -1,4 +1,3 @@
-#!/usr/bin/python3
 """Plot zone profiles of an impact3d dump against the exact solution.
 
 Usage:
@@ -24,9 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-
-import compare  # noqa: E402
-from impact3d_tools import dump  # noqa: E402
+from impact3d_tools import compare, dump  # noqa: E402
 
 PANELS = (("rho", "density"), ("p", "pressure"), ("u", "velocity"),
           ("e", "specific internal energy"))

@@ -3,7 +3,8 @@
 
 Plain asserts, no framework: every test_* function runs, failures are
 listed, the last line is `N passed, M failed`, and the exit status is
-non-zero if anything failed.  Run: /usr/bin/python3 tools/test_exact.py
+non-zero if anything failed.  Run: PYTHONPATH=tools /usr/bin/python3
+tests/regression/cases/exact_solutions/check.py
 
 Reference values:
   * Riemann: Toro, "Riemann Solvers and Numerical Methods for Fluid
@@ -24,13 +25,11 @@ import traceback
 import h5py
 import numpy as np
 
-
-import compare  # noqa: E402
-from impact3d_tools import dump  # noqa: E402
-import exact_noh  # noqa: E402
-import exact_riemann  # noqa: E402
-import exact_sedov  # noqa: E402
-import plot_profiles  # noqa: E402
+from impact3d_tools import compare, dump
+from impact3d_tools import profiles as plot_profiles
+from impact3d_tools.exact import noh as exact_noh
+from impact3d_tools.exact import riemann as exact_riemann
+from impact3d_tools.exact import sedov as exact_sedov
 
 SOD = (1.0, 0.0, 1.0, 1.4, 0.125, 0.0, 0.1, 1.4)
 
