@@ -7,4 +7,4 @@ them (`compare`, its measures in `measures`), shape and gap measures
 
 Import it with `tools/` on the path: scripts in `tools/` have it there
 already (it is their own directory); the tests get it through PYTHONPATH (set
-by CTest); elsewhere `PYTHONPATH=<repo>/tools`. No module edits sys.path."""
+by CTest); elsewhere `PYTHONPATH=<repo>/tools`. No module edits the import path."""
