@@ -15,7 +15,7 @@ dump, exactly as the issue defines them:
 * L1(rho) = sum |rho_i - rho_exact(r_i)| V_i / sum V_i over zones with
   centroid radius r_i < 1.1; the centroid is the mean of the zone's 8 final
   node positions, V_i the final volume; rho_exact the Kamm-Timmes solution
-  (tools/exact_sedov.py).
+  (tools/impact3d_tools/exact/sedov.py).
 * shock radius: zones binned by centroid radius (dr = 0.01), volume-weighted
   mean density per bin; going outward from the peak bin, the first crossing
   of (1 + peak)/2, interpolated linearly between bin centres.
@@ -202,7 +202,8 @@ def render(data):
     add("")
     add("* L1(rho) = sum |rho_i - rho_exact(r_i)| V_i / sum V_i over zones with centroid "
         "radius < 1.1 (centroid = mean of the 8 final node positions, V_i the final "
-        "volume; exact solution tools/exact_sedov.py). Shock radius: zones binned by "
+        "volume; exact solution tools/impact3d_tools/exact/sedov.py). Shock radius: zones "
+        "binned by "
         "centroid radius (dr = 0.01), volume-weighted mean density per bin, first crossing "
         "of (1 + peak)/2 outward from the peak bin, interpolated between bin centres.")
     add("* Loop time: impact3d's `done, N cycles, T s (D s of it in dumps)` gives T - D; "

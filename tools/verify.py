@@ -138,7 +138,7 @@ def do_sod(opts, img, results):
 def interface_position(data):
     """x of the nodes shared by blocks 1 and 2 (mean), and the local zone width
     there (mean x-extent of the two zones nearest to it), as tests/regression/
-    regress.py interface measures them."""
+    check.py interface measures them."""
     x = data["coordinates"][:, 0]
     conn, block = data["connectivity"], data["block"]
     shared = np.array(sorted(set(conn[block == 1].ravel()) & set(conn[block == 2].ravel())))
@@ -446,7 +446,8 @@ def write_doc(path, opts, results, wall_total, command):
         "t = 0.2. Deck: `problems/sod/sod.nml` with `nx = n` and `y = z = 0, 1/n` "
         "(n x 1 x 1 cubic zones, symmetry planes on all faces), n = 100, 200, 400.\n")
     add("**Checks** the 1D shock-capturing of the 3D scheme against the exact Riemann "
-        "solution (`tools/exact_riemann.py`): the volume-weighted L1 error of density and "
+        "solution (`tools/impact3d_tools/exact/riemann.py`): the volume-weighted L1 error of "
+        "density and "
         "its observed convergence rate log2(L1(n) / L1(2n)), which is about 1 for a "
         "solution with discontinuities (first order at shocks and contacts whatever the "
         "formal order).\n")
@@ -477,7 +478,7 @@ def write_doc(path, opts, results, wall_total, command):
         "right: the interface is the x of the nodes shared by the two blocks (exact in a "
         "Lagrangian code: no mixed zones), errors are in local zone widths (mean x-extent of "
         "the two zones nearest the interface, or just behind the exact shock), as "
-        "`tests/regression/regress.py interface` measures them.\n")
+        "`tests/regression/check.py interface` measures them.\n")
     add(f"**ctest criterion**: {CRITERIA['riemann2']}.\n")
     if "s" in r2:
         s = r2["s"]
@@ -502,7 +503,8 @@ def write_doc(path, opts, results, wall_total, command):
         "deposited in the corner zone; the shock is at r = 1 at t = 1. Deck: "
         "`problems/sedov/sedov.nml` with `nx = ny = nz = n`.\n")
     add("**Checks** a strong spherical shock on a Cartesian mesh against the exact "
-        "solution (`tools/exact_sedov.py`): the shock radius (`shock_r`: mass-weighted mean "
+        "solution (`tools/impact3d_tools/exact/sedov.py`): the shock radius (`shock_r`: "
+        "mass-weighted mean "
         "radius of the zones denser than 2, rescaled by the same functional of the exact "
         "profile), the peak density (6 in the exact strong-shock limit; a mesh smears it "
         "lower), the whole-domain L1 error of density and its rate, and total-energy "

@@ -15,7 +15,7 @@ count is not run again).
 
 Default (quick, about 5 minutes on 2 ranks):
     Sod        conforming reference, non-matching meshes joined by DLM and DAM
-               (tests/regression/decks/sod_*.nml, pair 'mid')
+               (tests/regression/cases/sod_nonmatching/sod_*.nml, pair 'mid')
     Sedov      octant split at x = 0.6, left block 18^3 and 30^3: single mesh,
                DLM, DAM (problems/sedov_contact, pair 'x06'; the single-mesh
                references are problems/sedov/sedov.nml with nx = ny = nz = n)
@@ -74,9 +74,9 @@ TAYLOR_CASES = (1, 2)
 TUBE_VARIANTS = ("same", "stiff")
 TUBE_TITLES = {"same": "same material", "stiff": "struck tube (a) 10x stiffer"}
 
-SOD_DECKS = {"conforming": "tests/regression/decks/sod_conforming.nml",
-             "dlm": "tests/regression/decks/sod_contact_dlm.nml",
-             "dam": "tests/regression/decks/sod_contact_dam.nml"}
+SOD_DECKS = {"conforming": "tests/regression/cases/sod_nonmatching/sod_conforming.nml",
+             "dlm": "tests/regression/cases/sod_nonmatching/sod_contact_dlm.nml",
+             "dam": "tests/regression/cases/sod_nonmatching/sod_contact_dam.nml"}
 SEDOV_CONTACT = "problems/sedov_contact/sedov_contact_{method}_{n}.nml"
 SEDOV_CURVED = "problems/sedov_contact/sedov_curved_{method}_{mesh}.nml"
 SEDOV_CURVED_QUICK = ("a", "b")

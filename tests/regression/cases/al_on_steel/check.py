@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The criterion of docs/problems.md, D3: Al block on a steel block through contact.
 
-Usage: al_on_steel.py --exe IMPACT3D --mpiexec MPIRUN --workdir DIR --deck DECK
+Usage: check.py --exe IMPACT3D --mpiexec MPIRUN --workdir DIR --deck DECK
                       [--np 2] [--tol 0.03]
 
 Runs DECK (problems/al_on_steel/al_on_steel_{dlm,dam}_fine.nml) on --np ranks in

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Bad-deck regression test for impact3d.
 
-Usage: bad_decks.py /path/to/impact3d [--mpiexec mpirun --np 2] [--jobs 4] [--verbose]
+Usage: check.py /path/to/impact3d [--mpiexec mpirun --np 2] [--jobs 4] [--verbose]
 
 Each case starts from a small valid deck (a 10 x 1 x 1 Sod-like box whose
 &output directory is the case's own temporary directory), plants one defect

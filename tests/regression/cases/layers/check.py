@@ -7,7 +7,7 @@ io, the configured core_version as core), in the order
 
 (eos and material are one level), and no file outside src/parallel uses MPI.
 
-Usage: check_layers.py SRC_DIR
+Usage: check.py SRC_DIR
 """
 
 import os

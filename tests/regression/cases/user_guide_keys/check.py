@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The user guide documents every deck key the code knows, and no other.
 
-Usage: check_user_guide.py IMPACT3D_EXE docs/user-guide.md
+Usage: check.py IMPACT3D_EXE docs/user-guide.md
 Runs `impact3d --keys`, then checks that each group has a '### &group' section
 whose table rows (| `key` | ...) name exactly the code's keys, in one table
 (a blank line between rows would split it in two when rendered).
