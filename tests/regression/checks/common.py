@@ -11,6 +11,8 @@ import shutil
 import subprocess
 import sys
 
+import numpy as np
+
 from impact3d_tools import compare, history
 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
@@ -45,12 +47,14 @@ def run(args, np, workdir, deck, extra=()):
     return proc.returncode, proc.stdout, proc.stderr
 
 
-def run_ok(args, workdir, name="run exits 0"):
-    """Run --deck on --np ranks in workdir; check that it exits 0 (criterion
-    `name`); return (exit code is 0, stdout)."""
+def run_in(args, subdir, name="run exits 0"):
+    """Run --deck on --np ranks in --workdir/subdir; check that it exits 0
+    (criterion `name`); return (the run directory, or None when the run
+    failed, and its stdout)."""
+    workdir = os.path.join(args.workdir, subdir)
     code, out, err = run(args, args.np, workdir, args.deck)
     check(name, code == 0, err[-2000:])
-    return code == 0, out
+    return (workdir if code == 0 else None), out
 
 
 def run_pair(args, reference_dir, run_dir, reference_name="reference", run_name="run"):
@@ -126,7 +130,6 @@ def check_bounds(values, args, what="", reference=None):
 def report_contact_energy(workdir):
     """Print the energy the contact forces did (relative to the initial total)
     and the largest energy_error of the balance that books it."""
-    import numpy as np
     header, rows = read_history(workdir)
     e0 = rows[0, header.index("total_energy")]
     if "contact_work" in header:

@@ -16,11 +16,12 @@ section C).
       within T of the analytic values; friction work = the block's kinetic
       energy; energy balance to round-off
 """
-import os
+
+import numpy as np
 
 from impact3d_tools import dump
 
-from checks.common import check, dumps as dumps_of, final_dump, read_history, run_ok
+from checks.common import check, dumps as dumps_of, final_dump, read_history, run_in
 
 
 def cmd_bars(args):
@@ -33,10 +34,8 @@ def cmd_bars(args):
     move at the impedance-matched velocity --v-interface during contact
     (within --tol of |v_left - v_right|: the velocity never reverses); after
     separation each bar's mean velocity is --final-left / --final-right."""
-    import numpy as np
-    wd = os.path.join(args.workdir, "bars")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "bars")
+    if wd is None:
         return
     header, rows = read_history(wd)
     t = rows[:, header.index("time")]
@@ -114,10 +113,8 @@ def cmd_patch(args):
     zones with centroid x in --range (behind the front) is uniform across the
     section, (max - min)/|mean| <= --tol, and its mean equals --target within
     --tol (the applied pressure, transmitted through matched impedances)."""
-    import numpy as np
-    wd = os.path.join(args.workdir, "patch")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "patch")
+    if wd is None:
         return
     d = dump.load(final_dump(wd))
     c = dump.zone_centroids(d)
@@ -144,10 +141,8 @@ def cmd_impact(args):
     stays within --momentum-tol of its initial value (relative to its norm;
     give it for DLM, exact); reports the contact work and the final
     mass-weighted velocity of each block."""
-    import numpy as np
-    wd = os.path.join(args.workdir, "impact")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "impact")
+    if wd is None:
         return
     header, rows = read_history(wd)
     e0 = abs(rows[0, header.index("total_energy")])
@@ -197,10 +192,8 @@ def cmd_slide(args):
     (friction work booked), and the friction work - the pair's work column
     (--pair) or, without contact, the boundary work - ends within --tol of
     minus the block's initial kinetic energy and never exceeds 1e-3 of it."""
-    import numpy as np
-    wd = os.path.join(args.workdir, "slide")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "slide")
+    if wd is None:
         return
     header, rows = read_history(wd)
     t = rows[:, header.index("time")]

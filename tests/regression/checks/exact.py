@@ -16,16 +16,17 @@ impact3d_tools.compare (its summary's `key = value` values).
 """
 import os
 
+import numpy as np
+
 from impact3d_tools import dump
 
 from checks.common import (add_bounds, add_problem, check, check_bounds, compare_values,
-                           final_dump, run, run_ok)
+                           final_dump, run, run_in)
 
 
 def cmd_compare(args):
-    wd = os.path.join(args.workdir, "compare")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "compare")
+    if wd is None:
         return
     rc, values, err = compare_values(final_dump(wd), args.problem,
                                      args.compare_args + ["--out", os.path.join(wd, "summary.txt")])
@@ -63,10 +64,8 @@ def cmd_convergence(args):
 
 
 def cmd_window(args):
-    import numpy as np
-    wd = os.path.join(args.workdir, "window")
-    ok, out = run_ok(args, wd, "run exits 0 (no tangling)")
-    if not ok:
+    wd, out = run_in(args, "window", "run exits 0 (no tangling)")
+    if wd is None:
         return
     d = dump.load(final_dump(wd))
     axis = "xyz".index(args.axis)
@@ -80,10 +79,8 @@ def cmd_window(args):
 
 
 def cmd_interface(args):
-    import numpy as np
-    wd = os.path.join(args.workdir, "interface")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "interface")
+    if wd is None:
         return
     path = final_dump(wd)
     rc, values, err = compare_values(path, args.problem, args.compare_args)

@@ -13,15 +13,16 @@ import glob
 import os
 import re
 
+import numpy as np
+
 from impact3d_tools import dump, history
 
-from checks.common import check, run, run_ok
+from checks.common import check, run, run_in
 
 
 def cmd_energy(args):
-    wd = os.path.join(args.workdir, "energy")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "energy")
+    if wd is None:
         return
     h = history.read(wd)
     rows = h.rows
@@ -54,7 +55,6 @@ def cmd_failure(args):
 
 
 def cmd_stability(args):
-    import numpy as np
     import h5py
     wd = os.path.join(args.workdir, "stability")
     code, out, err = run(args, args.np, wd, args.deck)

@@ -15,6 +15,8 @@ sections C and D).
 """
 import os
 
+import numpy as np
+
 from impact3d_tools import dump, radial
 
 from checks.common import (add_bounds, add_problem, add_reference, check, check_bounds,
@@ -32,7 +34,6 @@ def cmd_mirror(args):
     checks both runs' energy balance; --momentum-tol checks the contact run's
     total momentum along --momentum-axes (zero by symmetry) against the body's
     initial momentum there."""
-    import numpy as np
     wd_ref = os.path.join(args.workdir, "wall")
     wd = os.path.join(args.workdir, "mirror")
     ok, out = run_pair(args, wd_ref, wd, "wall", "mirror")
@@ -112,7 +113,6 @@ def cmd_relative(args):
     books the contact work) is at most that; with --booked-pair and
     --momentum-tol, the momentum that pair's forces added over the run (sum of
     its dmom columns) is at most that fraction of the largest |momentum|."""
-    import numpy as np
     wd_ref = os.path.join(args.workdir, "reference")
     wd = os.path.join(args.workdir, "contact")
     ok, out = run_pair(args, wd_ref, wd, "reference", "contact")

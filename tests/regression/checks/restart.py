@@ -28,15 +28,25 @@ from checks.common import (ENV, add_replace, add_restart, check, command, final_
                            h5same, run, variant_deck)
 
 
-def cmd_restart(args):
+def full_run(args, deck):
+    """The uninterrupted run of deck on --np ranks: (its final dump, its
+    --from-cycle dump; None for the latter when the run failed or did not
+    write it)."""
     wd = os.path.join(args.workdir, "full")
-    deck = variant_deck(args) if args.replace else args.deck
     code, out, err = run(args, args.np, wd, deck)
     check("uninterrupted run exits 0", code == 0, err[-2000:])
     full = final_dump(wd)
     start = os.path.join(wd, "dump_%06d.h5" % args.from_cycle)
     check("mid-run dump exists", os.path.exists(start), start)
     if code != 0 or not os.path.exists(start):
+        return full, None
+    return full, start
+
+
+def cmd_restart(args):
+    deck = variant_deck(args) if args.replace else args.deck
+    full, start = full_run(args, deck)
+    if start is None:
         return
     wr = os.path.join(args.workdir, "restarted")
     code, out, err = run(args, args.restart_np, wr, deck,
@@ -58,13 +68,8 @@ def text_attr(attrs, name):
 
 def cmd_restartdeck(args):
     import h5py
-    wd = os.path.join(args.workdir, "full")
-    code, out, err = run(args, args.np, wd, args.deck)
-    check("uninterrupted run exits 0", code == 0, err[-2000:])
-    full = final_dump(wd)
-    start = os.path.join(wd, "dump_%06d.h5" % args.from_cycle)
-    check("mid-run dump exists", os.path.exists(start), start)
-    if code != 0 or not os.path.exists(start):
+    full, start = full_run(args, args.deck)
+    if start is None:
         return
     with open(args.deck) as f:
         text = f.read()

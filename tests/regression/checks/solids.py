@@ -15,20 +15,20 @@
 """
 import os
 
+import numpy as np
+
 from impact3d_tools import dump
 from impact3d_tools.exact import verney
 from impact3d_tools.shapes import inner_radius_history, rod_shape
 
 from checks.common import (add_reference, check, final_dump, read_history,
-                           report_contact_energy, run, run_ok, run_pair)
+                           report_contact_energy, run, run_in, run_pair)
 
 
 def cmd_wavefront(args):
     """Speed of a planar front: where the x velocity crosses half the piston speed."""
-    import numpy as np
-    wd = os.path.join(args.workdir, "wavefront")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "wavefront")
+    if wd is None:
         return
     d = dump.load(final_dump(wd))
     x = d["coordinates"][:, 0]
@@ -47,10 +47,8 @@ def cmd_wavefront(args):
 
 def cmd_rebound(args):
     """A bar hitting a rigid wall: contact time 2L/c and rebound at its speed."""
-    import numpy as np
-    wd = os.path.join(args.workdir, "rebound")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "rebound")
+    if wd is None:
         return
     header, rows = read_history(wd)
     t = rows[:, header.index("time")]
@@ -73,10 +71,8 @@ def cmd_twowave(args):
     elastic limit (stress), --c0 and --s1 the Hugoniot fit, --rho0 the density,
     --target-velocity the piston speed; the run starts at t = 0 with the piston
     at --origin."""
-    import numpy as np
-    wd = os.path.join(args.workdir, "twowave")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "twowave")
+    if wd is None:
         return
     d = dump.load(final_dump(wd))
     t = float(d["attrs"]["time"])
@@ -117,7 +113,6 @@ def cmd_shell_stop(args):
     """Imploding shell: the inner surface (nodes at radius --origin at t = 0)
     stops at --target within --tol (absolute); the stopping radius is the
     smallest mean radius over the dumps."""
-    import numpy as np
     target = args.target
     if args.reference:
         wd_ref = os.path.join(args.workdir, "reference")
@@ -127,9 +122,8 @@ def cmd_shell_stop(args):
             return
         target = min(inner_radius_history(wd_ref, args.origin), key=lambda h: h[1])[1]
         print("  reference (single shell) stops at r = %.4f" % target)
-    wd = os.path.join(args.workdir, "shell")
-    ok, out = run_ok(args, wd)
-    if not ok:
+    wd, out = run_in(args, "shell")
+    if wd is None:
         return
     history = inner_radius_history(wd, args.origin)
     t_stop, r_stop = min(history, key=lambda h: h[1])
