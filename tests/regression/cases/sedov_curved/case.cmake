@@ -1,9 +1,9 @@
 # Sedov octant split along the sphere r = 0.5 by contact (docs/problems.md, D2,
-# curved split). A ball octant (mesh type
-# 'ball') and the box minus the ball ('box_minus_ball') are meshed apart with
-# non-matching patches on the sphere (12 against 18 zones along a patch edge
-# on the medium mesh) and joined by the pair 'r05'; the shock crosses the
-# interface at t = 0.18 and reaches r = 1 at t = 1.
+# curved split). A ball octant (mesh type 'ball') and the box minus the ball
+# ('box_minus_ball') are meshed apart with non-matching patches on the sphere
+# (12 against 18 zones along a patch edge on the medium mesh) and joined by the
+# pair 'r05'; the shock crosses the interface at t = 0.18 and reaches r = 1 at t
+# = 1.
 #
 # Medium mesh (problems/sedov_contact/sedov_curved_{dlm,dam}_b.nml, 22680
 # zones), measured on 2 ranks (problems/sedov_contact/README.md):
