@@ -2,7 +2,7 @@
 """Work-precision of impact3d on LULESH 2.0's own Sedov problem (issue 18).
 
 Usage:
-    /usr/bin/python3 benchmarks/lulesh_sedov.py [--exe build/impact3d]
+    PYTHONPATH=tools /usr/bin/python3 benchmarks/lulesh_sedov.py [--exe build/impact3d]
         [--sizes 15 20 30 45] [--repeats N] [--lulesh /tmp/lulesh/lulesh2.0]
         [--lulesh-src /work/.mirror/LLNL+LULESH/repo] [--no-lulesh]
         [--hydro 'key = value, ...' --label NAME] [--render-only]
@@ -15,7 +15,7 @@ dump, exactly as the issue defines them:
 * L1(rho) = sum |rho_i - rho_exact(r_i)| V_i / sum V_i over zones with
   centroid radius r_i < 1.1; the centroid is the mean of the zone's 8 final
   node positions, V_i the final volume; rho_exact the Kamm-Timmes solution
-  (tools/exact_sedov.py).
+  (tools/impact3d_tools/exact/sedov.py).
 * shock radius: zones binned by centroid radius (dr = 0.01), volume-weighted
   mean density per bin; going outward from the peak bin, the first crossing
   of (1 + peak)/2, interpolated linearly between bin centres.
@@ -51,11 +51,11 @@ import tempfile
 
 import numpy as np
 
+from impact3d_tools import dump as dumplib
+from impact3d_tools.exact.sedov import Sedov
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-sys.path.insert(0, os.path.join(ROOT, "tools"))
-import dump as dumplib  # noqa: E402
-from exact_sedov import Sedov  # noqa: E402
 
 GAMMA = 5.0 / 3.0
 E0 = 4935.9325
@@ -197,12 +197,13 @@ def render(data):
         "the origin zone), symmetry planes at x, y, z = 0, free faces elsewhere, t = 0.01 "
         "(exact shock radius 1.0000013). Decks `problems/sedov_lulesh/sedov_lulesh_{15,20,"
         "30,45}.nml`, every other setting at its default. Regenerate with "
-        "`/usr/bin/python3 benchmarks/lulesh_sedov.py --exe build/impact3d` (it re-renders "
-        "this whole document).")
+        "`PYTHONPATH=tools /usr/bin/python3 benchmarks/lulesh_sedov.py --exe build/impact3d` (it "
+        "re-renders this whole document).")
     add("")
     add("* L1(rho) = sum |rho_i - rho_exact(r_i)| V_i / sum V_i over zones with centroid "
         "radius < 1.1 (centroid = mean of the 8 final node positions, V_i the final "
-        "volume; exact solution tools/exact_sedov.py). Shock radius: zones binned by "
+        "volume; exact solution tools/impact3d_tools/exact/sedov.py). Shock radius: zones "
+        "binned by "
         "centroid radius (dr = 0.01), volume-weighted mean density per bin, first crossing "
         "of (1 + peak)/2 outward from the peak bin, interpolated between bin centres.")
     add("* Loop time: impact3d's `done, N cycles, T s (D s of it in dumps)` gives T - D; "

@@ -5,7 +5,7 @@ final dump bitwise identical (h5diff, /run excluded) between two builds, on
 
 Usage:
     bitwise_commits.py [--base HEAD^ | --base-exe EXE] [--head HEAD | --head-exe EXE]
-        [--decks tests/regression/decks/*.nml] [--ranks 1 3]
+        [--decks tests/regression/{decks,cases/*}/*.nml] [--ranks 1 3]
         [--max-seconds 120] [--workdir /tmp/impact3d_bitwise]
 
 --base and --head are git revisions, each built (Release) in a temporary
@@ -61,8 +61,10 @@ def main():
     ap.add_argument("--head", default="HEAD")
     ap.add_argument("--head-exe", default=None)
     ap.add_argument("--base-exe", default=None)
+    regression = os.path.join(ROOT, "tests", "regression")
     ap.add_argument("--decks", nargs="*",
-                    default=sorted(glob.glob(os.path.join(ROOT, "tests/regression/decks/*.nml"))))
+                    default=sorted(glob.glob(os.path.join(regression, "decks", "*.nml"))
+                                   + glob.glob(os.path.join(regression, "cases", "*", "*.nml"))))
     ap.add_argument("--ranks", nargs="*", type=int, default=[1, 3])
     ap.add_argument("--max-seconds", type=float, default=120.0)
     ap.add_argument("--workdir", default="/tmp/impact3d_bitwise")

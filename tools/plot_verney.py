@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Verney shell plots: inner radius history against the rigid-plastic energy
-balance (exact_verney.py) and the energy conversion (kinetic -> internal,
+balance (impact3d_tools.exact.verney) and the energy conversion (kinetic -> internal,
 i.e. plastic work) from history.txt.
 
 Usage: plot_verney.py RUN_DIR [-o PREFIX]   (RUN_DIR holds the dumps and history.txt)
@@ -17,7 +17,7 @@ import numpy as np  # noqa: E402
 
 from impact3d_tools import dump  # noqa: E402
 from impact3d_tools import history  # noqa: E402
-import exact_verney  # noqa: E402
+from impact3d_tools.exact import verney as exact_verney  # noqa: E402
 
 
 def main():

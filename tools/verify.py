@@ -35,12 +35,7 @@ Whether the numbers meet the ctest criteria is reported, not enforced.
 
 import argparse
 import datetime
-import glob
-import json
-import math
 import os
-import re
-import shutil
 import subprocess
 import sys
 import time
@@ -54,18 +49,16 @@ import numpy as np  # noqa: E402
 TOOLS = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(TOOLS)
 
-import compare  # noqa: E402
-from impact3d_tools import dump  # noqa: E402
-from impact3d_tools import history as impact3d_history  # noqa: E402
-import plot_profiles  # noqa: E402
+from impact3d_tools import compare, dump  # noqa: E402
+from impact3d_tools import profiles as plot_profiles  # noqa: E402
+from impact3d_tools.runs import (first_dump, fmt, history, noh_deck, rate,  # noqa: E402
+                                 riemann2_deck, run_case, saltzman_deck, sedov_deck, sod_deck,
+                                 summarize)
 
-MPI_ENV = {"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-           "OMPI_MCA_rmaps_base_oversubscribe": "1"}
 SOD_SIZES = (100, 200, 400)
 SEDOV_SIZES = (15, 30, 60)
 SEDOV_QUICK = (15, 30)
 RIEMANN2_ZONES = 200
-GAMMA_RIGHT = 5.0 / 3.0
 SALTZMAN_WINDOW = (0.75, 0.88)
 NOH_REGION = (0.05, 0.3)
 
@@ -84,152 +77,7 @@ CRITERIA = {
 
 # --------------------------------------------------------------------------- decks
 
-def read(path):
-    with open(path, encoding="utf-8") as handle:
-        return handle.read()
-
-
-def substitute(text, key, value, group=None):
-    """Replace the value of `key = ...` (a whole line, or up to the end of a
-    one-line group) in the deck text; exactly one occurrence must exist."""
-    pattern = re.compile(r"^(\s*" + re.escape(key) + r"\s*=\s*)([^\n/!]*?)(\s*(?:!.*)?)$",
-                         re.MULTILINE)
-    new, count = pattern.subn(lambda m: m.group(1) + value + m.group(3), text)
-    if count != 1:
-        raise ValueError(f"deck: expected one line '{key} = ...', found {count}")
-    return new
-
-
-def replace_group(text, group, replacement):
-    """Replace every `&group ... /` of the deck by replacement (once, at the first)."""
-    pattern = re.compile(r"^&" + group + r"\b.*?^/[ \t]*\n", re.MULTILINE | re.DOTALL)
-    matches = list(pattern.finditer(text))
-    if not matches:
-        raise ValueError(f"deck: no &{group} group")
-    out, last = [], 0
-    for i, match in enumerate(matches):
-        out.append(text[last:match.start()])
-        if i == 0:
-            out.append(replacement)
-        last = match.end()
-    out.append(text[last:])
-    return "".join(out)
-
-
-def sod_deck(n):
-    text = read(os.path.join(ROOT, "problems", "sod", "sod.nml"))
-    h = repr(1.0 / n)
-    text = substitute(text, "title", f"'Sod shock tube, {n} zones'")
-    text = substitute(text, "nx", str(n))
-    text = substitute(text, "y", f"0.0, {h}")
-    text = substitute(text, "z", f"0.0, {h}")
-    return text
-
-
-def riemann2_deck(n):
-    text = sod_deck(n)
-    text = substitute(text, "title", f"'Two-gamma Riemann problem, {n} zones'")
-    text = replace_group(text, "material",
-                         "&material\n  name = 'gas_left', eos = 'ideal_gas', gamma = 1.4\n/\n"
-                         "&material\n  name = 'gas_right', eos = 'ideal_gas', "
-                         f"gamma = {GAMMA_RIGHT!r}\n/\n")
-    text = replace_group(text, "block",
-                         "&block\n  name = 'left', material = 'gas_left', "
-                         "box = 0.0, 0.5, -1, 1, -1, 1\n/\n"
-                         "&block\n  name = 'right', material = 'gas_right', "
-                         "box = 0.5, 1.0, -1, 1, -1, 1\n/\n")
-    return text
-
-
-def sedov_deck(n):
-    text = read(os.path.join(ROOT, "problems", "sedov", "sedov.nml"))
-    text = substitute(text, "title", f"'Sedov octant {n}^3'")
-    for key in ("nx", "ny", "nz"):
-        text = substitute(text, key, str(n))
-    return text
-
-
-def noh_deck():
-    return read(os.path.join(ROOT, "problems", "noh", "noh.nml"))
-
-
-def saltzman_deck():
-    return read(os.path.join(ROOT, "problems", "saltzman", "saltzman.nml"))
-
-
 # --------------------------------------------------------------------------- runs
-
-def final_dump(workdir):
-    """The dump of the highest cycle (the final one), failed dumps excluded."""
-    dumps = sorted(glob.glob(os.path.join(workdir, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
-    return dumps[-1] if dumps else None
-
-
-def first_dump(workdir):
-    dumps = sorted(glob.glob(os.path.join(workdir, "*_[0-9][0-9][0-9][0-9][0-9][0-9].h5")))
-    return dumps[0] if dumps else None
-
-
-def run_case(name, deck, opts):
-    """Run one deck in workdir/name; return a dict with rc, wall time, paths."""
-    workdir = os.path.join(opts.workdir, name)
-    exe = os.path.abspath(opts.exe)
-    record_path = os.path.join(workdir, "run.json")
-    if opts.reuse and os.path.isfile(record_path):
-        with open(record_path, encoding="utf-8") as handle:
-            record = json.load(handle)
-        if (record.get("rc") == 0 and record.get("exe") == exe
-                and record.get("exe_mtime") == os.path.getmtime(exe)
-                and record.get("np") == opts.np
-                and os.path.isfile(os.path.join(workdir, "deck.nml"))
-                and read(os.path.join(workdir, "deck.nml")) == deck
-                and final_dump(workdir)):
-            record["reused"] = True
-            record["dump"] = final_dump(workdir)
-            print(f"  {name}: reused ({record['wall']:.1f} s when run)", flush=True)
-            return record
-    if os.path.isdir(workdir):
-        shutil.rmtree(workdir)
-    os.makedirs(workdir)
-    with open(os.path.join(workdir, "deck.nml"), "w", encoding="utf-8") as handle:
-        handle.write(deck)
-    # (the deck text is compared as written for --reuse)
-    cmd = [opts.mpirun, "-np", str(opts.np), exe, "deck.nml"]
-    print(f"  {name}: {' '.join(cmd)} ...", end="", flush=True)
-    start = time.monotonic()
-    with open(os.path.join(workdir, "run.log"), "w", encoding="utf-8") as log:
-        proc = subprocess.run(cmd, cwd=workdir, env=dict(os.environ, **MPI_ENV),
-                              stdout=log, stderr=subprocess.STDOUT)
-    wall = time.monotonic() - start
-    path = final_dump(workdir)
-    record = {"name": name, "rc": proc.returncode, "wall": wall, "exe": exe,
-              "exe_mtime": os.path.getmtime(exe), "np": opts.np, "cmd": " ".join(cmd),
-              "workdir": workdir, "reused": False}
-    if path:
-        data = dump.load(path)
-        record["cycles"] = int(data["attrs"].get("cycle", 0))
-        record["nzone"] = int(data["connectivity"].shape[0])
-        record["time"] = float(data["attrs"].get("time", math.nan))
-    with open(record_path, "w", encoding="utf-8") as handle:
-        json.dump(record, handle, indent=1)
-    status = "ok" if proc.returncode == 0 else f"FAILED (exit {proc.returncode})"
-    print(f" {status}, {wall:.1f} s, {record.get('cycles', '?')} cycles", flush=True)
-    if proc.returncode != 0:
-        with open(os.path.join(workdir, "run.log"), encoding="utf-8", errors="replace") as log:
-            sys.stdout.write("".join(log.readlines()[-15:]))
-    record["dump"] = path
-    return record
-
-
-def compare_args(problem, path, extra=()):
-    parser = argparse.ArgumentParser()
-    compare.add_problem_arguments(parser)
-    return parser.parse_args(["--problem", problem, path] + list(extra))
-
-
-def summarize(problem, path, extra=()):
-    return compare.summarize(compare_args(problem, path, extra))
-
 
 def plot(problem, path, out, title, extra=()):
     parser = argparse.ArgumentParser()
@@ -241,17 +89,6 @@ def plot(problem, path, out, title, extra=()):
                              + list(extra))
     plot_profiles.plot(args)
     print(f"  wrote {os.path.relpath(out, ROOT)}", flush=True)
-
-
-def rate(coarse, fine, ratio=2.0):
-    if coarse > 0.0 and fine > 0.0:
-        return math.log(coarse / fine) / math.log(ratio)
-    return math.nan
-
-
-def history(workdir):
-    """history.txt as a dict of columns (names from its '#' header line)."""
-    return impact3d_history.columns(workdir)
 
 
 # --------------------------------------------------------------------------- problems
@@ -301,7 +138,7 @@ def do_sod(opts, img, results):
 def interface_position(data):
     """x of the nodes shared by blocks 1 and 2 (mean), and the local zone width
     there (mean x-extent of the two zones nearest to it), as tests/regression/
-    regress.py interface measures them."""
+    check.py interface measures them."""
     x = data["coordinates"][:, 0]
     conn, block = data["connectivity"], data["block"]
     shared = np.array(sorted(set(conn[block == 1].ravel()) & set(conn[block == 2].ravel())))
@@ -473,12 +310,6 @@ def do_saltzman(opts, img, results):
 
 # --------------------------------------------------------------------------- report
 
-def fmt(value, spec=".3e"):
-    if value is None or (isinstance(value, float) and not math.isfinite(value)):
-        return "n/a"
-    return format(value, spec)
-
-
 def yes(ok):
     return "yes" if ok else "**NO**"
 
@@ -615,7 +446,8 @@ def write_doc(path, opts, results, wall_total, command):
         "t = 0.2. Deck: `problems/sod/sod.nml` with `nx = n` and `y = z = 0, 1/n` "
         "(n x 1 x 1 cubic zones, symmetry planes on all faces), n = 100, 200, 400.\n")
     add("**Checks** the 1D shock-capturing of the 3D scheme against the exact Riemann "
-        "solution (`tools/exact_riemann.py`): the volume-weighted L1 error of density and "
+        "solution (`tools/impact3d_tools/exact/riemann.py`): the volume-weighted L1 error of "
+        "density and "
         "its observed convergence rate log2(L1(n) / L1(2n)), which is about 1 for a "
         "solution with discontinuities (first order at shocks and contacts whatever the "
         "formal order).\n")
@@ -646,7 +478,7 @@ def write_doc(path, opts, results, wall_total, command):
         "right: the interface is the x of the nodes shared by the two blocks (exact in a "
         "Lagrangian code: no mixed zones), errors are in local zone widths (mean x-extent of "
         "the two zones nearest the interface, or just behind the exact shock), as "
-        "`tests/regression/regress.py interface` measures them.\n")
+        "`tests/regression/check.py interface` measures them.\n")
     add(f"**ctest criterion**: {CRITERIA['riemann2']}.\n")
     if "s" in r2:
         s = r2["s"]
@@ -671,7 +503,8 @@ def write_doc(path, opts, results, wall_total, command):
         "deposited in the corner zone; the shock is at r = 1 at t = 1. Deck: "
         "`problems/sedov/sedov.nml` with `nx = ny = nz = n`.\n")
     add("**Checks** a strong spherical shock on a Cartesian mesh against the exact "
-        "solution (`tools/exact_sedov.py`): the shock radius (`shock_r`: mass-weighted mean "
+        "solution (`tools/impact3d_tools/exact/sedov.py`): the shock radius (`shock_r`: "
+        "mass-weighted mean "
         "radius of the zones denser than 2, rescaled by the same functional of the exact "
         "profile), the peak density (6 in the exact strong-shock limit; a mesh smears it "
         "lower), the whole-domain L1 error of density and its rate, and total-energy "

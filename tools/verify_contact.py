@@ -9,13 +9,13 @@ Usage:
 One command for the contact problems of docs/problems.md, section D.  Each run gets
 its own directory under --workdir (deck.nml, run.log, dumps, history.txt,
 run.json) and is started as `mpirun -np NP EXE deck.nml` through
-tools/verify.py run_case (same environment, same --reuse rule: a directory that
+impact3d_tools.runs.run_case (same environment, same --reuse rule: a directory that
 already holds a successful run of the identical deck, executable and rank
 count is not run again).
 
 Default (quick, about 5 minutes on 2 ranks):
     Sod        conforming reference, non-matching meshes joined by DLM and DAM
-               (tests/regression/decks/sod_*.nml, pair 'mid')
+               (tests/regression/cases/sod_nonmatching/sod_*.nml, pair 'mid')
     Sedov      octant split at x = 0.6, left block 18^3 and 30^3: single mesh,
                DLM, DAM (problems/sedov_contact, pair 'x06'; the single-mesh
                references are problems/sedov/sedov.nml with nx = ny = nz = n)
@@ -63,12 +63,8 @@ import numpy as np  # noqa: E402
 TOOLS = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(TOOLS)
 
-import compare  # noqa: E402
-from impact3d_tools import dump  # noqa: E402
-from impact3d_tools import shapes  # noqa: E402
-import exact_verney  # noqa: E402
-import radial_gap  # noqa: E402
-import verify  # noqa: E402
+from impact3d_tools import compare, dump, measures, radial, runs, shapes  # noqa: E402
+from impact3d_tools.exact import verney as exact_verney  # noqa: E402
 
 DPI = 110
 METHODS = ("dlm", "dam")
@@ -78,9 +74,9 @@ TAYLOR_CASES = (1, 2)
 TUBE_VARIANTS = ("same", "stiff")
 TUBE_TITLES = {"same": "same material", "stiff": "struck tube (a) 10x stiffer"}
 
-SOD_DECKS = {"conforming": "tests/regression/decks/sod_conforming.nml",
-             "dlm": "tests/regression/decks/sod_contact_dlm.nml",
-             "dam": "tests/regression/decks/sod_contact_dam.nml"}
+SOD_DECKS = {"conforming": "tests/regression/cases/sod_nonmatching/sod_conforming.nml",
+             "dlm": "tests/regression/cases/sod_nonmatching/sod_contact_dlm.nml",
+             "dam": "tests/regression/cases/sod_nonmatching/sod_contact_dam.nml"}
 SEDOV_CONTACT = "problems/sedov_contact/sedov_contact_{method}_{n}.nml"
 SEDOV_CURVED = "problems/sedov_contact/sedov_curved_{method}_{mesh}.nml"
 SEDOV_CURVED_QUICK = ("a", "b")
@@ -126,7 +122,7 @@ AL_MEAN_LINE = re.compile(r"(\d+) dumps in .*: mean ([-0-9.eE+]+) Mbar \(min ([-
 # --------------------------------------------------------------------------- decks
 
 def deck_text(relpath):
-    return verify.read(os.path.join(ROOT, relpath))
+    return runs.read(os.path.join(ROOT, relpath))
 
 
 def deck_setup(relpath):
@@ -189,8 +185,8 @@ def run_stats(hist, pair):
 
 
 def run(name, deck, opts, label, pair=None, method=None):
-    """Run one deck (verify.run_case) and collect its history and timing."""
-    return measure(name, verify.run_case(name, deck, opts), label, pair, method)
+    """Run one deck (runs.run_case) and collect its history and timing."""
+    return measure(name, runs.run_case(name, deck, opts), label, pair, method)
 
 
 def measure(name, rec, label, pair=None, method=None):
@@ -199,7 +195,7 @@ def measure(name, rec, label, pair=None, method=None):
     entry = {"name": name, "label": label, "pair": pair, "method": method, "rec": rec,
              "ok": rec["rc"] == 0 and bool(rec.get("dump"))}
     if entry["ok"]:
-        entry["hist"] = verify.history(rec["workdir"])
+        entry["hist"] = runs.history(rec["workdir"])
         entry["stats"] = run_stats(entry["hist"], pair)
         entry["timing"] = parse_timing(os.path.join(rec["workdir"], "run.log"))
     return entry
@@ -229,8 +225,9 @@ def al_axial_stress(workdir):
     """problems/al_on_steel/analyse.py on a run directory: axial stress next to
     the interface (mean, min, max over its window), its impedance-match value and
     the relative error."""
+    path = os.pathsep.join([TOOLS] + [p for p in [os.environ.get("PYTHONPATH")] if p])
     proc = subprocess.run([sys.executable, AL_ANALYSE, workdir], capture_output=True,
-                          text=True)
+                          text=True, env=dict(os.environ, PYTHONPATH=path))
     target = AL_TARGET_LINE.search(proc.stdout)
     mean = AL_MEAN_LINE.search(proc.stdout)
     if proc.returncode != 0 or not target or not mean:
@@ -259,7 +256,7 @@ MEAN_LINES = {None: "-", "dlm": "--", "dam": ":"}
 
 def exact_setup(problem, path):
     """compare.Setup for the dump's time and the problem's default data."""
-    args = compare.fill_defaults(verify.compare_args(problem, path))
+    args = compare.fill_defaults(runs.compare_args(problem, path))
     return compare.Setup(args, dump.problem_time(dump.load(path))), args
 
 
@@ -276,7 +273,7 @@ def plot_sod(entries, path):
         axis.plot(x_line, setup.exact(x_line)[0], "-", color="0.3", lw=1.0, label="exact")
         for e in done:
             data = dump.load(e["rec"]["dump"])
-            x, rho = compare.planar_profile(dump.zone_centroids(data)[:, 0], data["density"],
+            x, rho = measures.planar_profile(dump.zone_centroids(data)[:, 0], data["density"],
                                             data["volume"])
             color, marker = STYLE[e["method"]]
             axis.plot(x, rho, marker=marker, ms=3.5, lw=0.8, color=color, mfc="none",
@@ -319,7 +316,7 @@ def plot_sedov_profiles(entries, n, path, title=None):
             value = data[name]
             color, _ = STYLE[e["method"]]
             axis.plot(r, value, ".", ms=1.0, alpha=0.3, color=color, rasterized=True)
-            centres, mean = compare.radial_profile(r, value, data["volume"], SEDOV_BIN)
+            centres, mean = measures.radial_profile(r, value, data["volume"], SEDOV_BIN)
             axis.plot(centres, mean, MEAN_LINES[e["method"]], lw=1.6, color=color,
                       label=e["label"])
             highest = max(highest, float(value[r < 1.3].max()))
@@ -438,7 +435,7 @@ def plot_taylor(cases, path):
             if not e["ok"]:
                 continue
             final, initial = rod_profile(e["rec"]["dump"],
-                                         verify.first_dump(e["rec"]["workdir"]))
+                                         runs.first_dump(e["rec"]["workdir"]))
             color, width = TAYLOR_STYLE[e["anvil"]]
             for axis in (whole, foot):
                 axis.plot(final[:, 0], final[:, 1], TAYLOR_LINES[e["method"]], lw=width,
@@ -518,7 +515,7 @@ def do_sod(opts, img):
         if not e["ok"]:
             rows.append(row(e))
             continue
-        l1 = verify.summarize("sod", e["rec"]["dump"])["L1_rho"]
+        l1 = runs.summarize("sod", e["rec"]["dump"])["L1_rho"]
         if e["method"] is None:
             reference = l1
             rows.append(row(e, f"L1(rho) = {l1:.3e}"))
@@ -541,7 +538,7 @@ def do_sod(opts, img):
 
 
 def sedov_entries(opts, n):
-    entries = [run(f"sedov_single_{n}", verify.sedov_deck(n), opts, f"single {n}^3")]
+    entries = [run(f"sedov_single_{n}", runs.sedov_deck(n), opts, f"single {n}^3")]
     for method in METHODS:
         deck = deck_text(SEDOV_CONTACT.format(method=method, n=n))
         entries.append(run(f"sedov_{method}_{n}", deck, opts, f"{method.upper()} {n}^3",
@@ -557,7 +554,7 @@ def sedov_rows(entries, n):
         if not e["ok"]:
             rows.append(row(e))
             continue
-        s = verify.summarize("sedov", e["rec"]["dump"])
+        s = runs.summarize("sedov", e["rec"]["dump"])
         text = (f"L1(rho) = {s['L1_rho']:.3e}, shock r error "
                 f"{100 * s['shock_r_error_rel']:+.2f} %")
         if e["method"] is None:
@@ -599,18 +596,18 @@ def curved_overshoot(workdir):
     beyond the outer region's faceted surface (block 2) over the run's dumps,
     with its time and the node's direction (tools/radial_gap.py: it sees
     nodes the contact no longer holds)."""
-    rows = radial_gap.history(workdir, 1, 2, SEDOV_CURVED_RADIUS)
+    rows = radial.history(workdir, 1, 2, SEDOV_CURVED_RADIUS)
     time, worst, direction = max(rows, key=lambda r: r[1])
     return worst, time, direction
 
 
 def do_sedov_curved(opts, img, meshes):
-    reference = run("sedov_single_30", verify.sedov_deck(30), opts, "single 30^3")
+    reference = run("sedov_single_30", runs.sedov_deck(30), opts, "single 30^3")
     reference["n"] = 30
     rows, everything = [], []
     l1_reference = None
     if reference["ok"]:
-        s = verify.summarize("sedov", reference["rec"]["dump"])
+        s = runs.summarize("sedov", reference["rec"]["dump"])
         l1_reference = s["L1_rho"]
         rows.append(row(reference, f"L1(rho) = {s['L1_rho']:.3e}, shock r error "
                                    f"{100 * s['shock_r_error_rel']:+.2f} %"))
@@ -629,7 +626,7 @@ def do_sedov_curved(opts, img, meshes):
             if not e["ok"]:
                 rows.append(row(e))
                 continue
-            s = verify.summarize("sedov", e["rec"]["dump"])
+            s = runs.summarize("sedov", e["rec"]["dump"])
             ratio = s["L1_rho"] / l1_reference if l1_reference else math.nan
             beyond, when, direction = curved_overshoot(e["rec"]["workdir"])
             ok = ratio <= 1.0 and abs(s["shock_r_error_rel"]) <= SEDOV_SHOCK_REL
@@ -855,7 +852,7 @@ TABLE_HEAD = ("| run | criterion value(s) | pass | largest penetration | contact
 
 
 def fmt(value, spec=".2e"):
-    return verify.fmt(value, spec)
+    return runs.fmt(value, spec)
 
 
 def verdict(ok):

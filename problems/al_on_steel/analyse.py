@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Axial stress on the axis near the Al / steel interface (docs/problems.md, D3).
 
-Usage: analyse.py RUN_DIRECTORY [--window 0.3 1.2] [--tol 0.03]
+Usage: PYTHONPATH=tools problems/al_on_steel/analyse.py RUN_DIRECTORY [--window 0.3 1.2] [--tol 0.03]
+(from the repository root: the impact3d_tools package is in tools/)
 
 Averages sigma_zz = p - s_zz (compression positive) of the zones on the axis
 (centroid within 0.12 cm of x = y = 0) next to the interface (|z| < 0.12 cm at
@@ -20,15 +21,13 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from impact3d_tools import dump  # noqa: E402
-from impact3d_tools import history  # noqa: E402
+import impedance_match as im
+from impact3d_tools import dump
+from impact3d_tools import history
 
 
 def impedance_match(v=0.1):
     """(axial stress, interface velocity) of the two-wave match (impedance_match.py)."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    import impedance_match as im
     u, sigma = im.match(lambda m, up: im.state_at_velocity(m, up)[0]["sigma"], v)
     return sigma, u
 

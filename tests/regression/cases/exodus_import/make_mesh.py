@@ -13,8 +13,7 @@ import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "..", "..", "tools"))
-from msh_to_exodus import convert  # noqa: E402
+CONVERT = os.path.join(HERE, "..", "..", "..", "..", "tools", "msh_to_exodus.py")
 
 
 def main():
@@ -22,7 +21,7 @@ def main():
         msh = os.path.join(tmp, "two_blocks.msh")
         subprocess.run(["gmsh", "-3", "-format", "msh41", os.path.join(HERE, "two_blocks.geo"),
                         "-o", msh], check=True, stdout=subprocess.DEVNULL)
-        convert(msh, os.path.join(HERE, "two_blocks.exo"))
+        subprocess.run([sys.executable, CONVERT, msh, os.path.join(HERE, "two_blocks.exo")], check=True)
 
 
 if __name__ == "__main__":

@@ -1,0 +1,5 @@
+# Bitwise identity of every dump on 1, 2, 3 and 4 ranks (shared decks).
+foreach(p sod_small sedov_small)
+  impact3d_check(parallel/bitwise_${p} "regression;parallel" bitwise
+    --workdir ${WORK}/bitwise_${p} --deck ${DECKS}/${p}.nml --ranks 1 2 3 4)
+endforeach()
