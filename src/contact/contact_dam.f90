@@ -228,21 +228,24 @@ contains
   !> segment gets the opposite momentum times its weight (the weights sum
   !> to 1): records keyed after every put-back record (key > nall), which
   !> dam_forces adds to the master's velocity as momentum.
-  subroutine dam_put_back(ct, p, k, dt, vm, um, out)
+  subroutine dam_put_back(ct, p, k, dt, vm, um, merged, out)
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: k !< the interface's number
     real(rk), intent(in) :: dt !< the stage's step
     real(rk), intent(in) :: vm(:, :) !< (3, ncn) matched velocities of the local set
     real(rk), intent(in) :: um(:, :) !< (3, ncn) their matching normals (0: not matched)
+    !> (ncn) the slave mass each master merged (sum of w_s M_s over its slaves; 0: none)
+    real(rk), intent(in) :: merged(:)
     type(records_t), intent(inout) :: out !< nv = 3: the slave's final velocity
     real(rk) :: nrm(3), target, pen, pen_max, pen_sq, sum_force, vnew(3), vmi(3), dv(3)
     real(rk) :: defect(3), vput(3)
     integer, allocatable :: group(:)
+    real(rk), allocatable :: share(:)
     integer :: ngroup
     integer :: q, n, c, e, active, npen
 
-    allocate(group(16))
+    allocate(group(16), share(16))
     active = 0
     npen = 0
     pen_max = 0.0_rk
@@ -281,10 +284,12 @@ contains
       ! slave's own change is m_s (vnew - v_s), along its own normal and
       ! with the RBF weights. What the two leave over (the defect) is taken
       ! off the slave and its masters as one velocity change of them all,
-      ! so together they gain no momentum and their relative velocities,
-      ! which the matching set, do not change. (In self-contact a slave is
-      ! a master too and its matched velocity is not its free one: left as
-      ! it is.)
+      ! each master with the part of its mass this slave merged into it, so
+      ! together they gain no momentum, and a defect the same for all the
+      ! slaves of a patch moves slaves and masters alike, leaving the
+      ! relative velocities the matching set. (In self-contact a slave is a
+      ! master too and its matched velocity is not its free one: left as it
+      ! is.)
       if (surface_node_index(p%b, int(n, ik)) == 0) then
         defect = ct%mass(n) * (vput - vm(:, n))
         ngroup = 0
@@ -293,21 +298,27 @@ contains
             c = p%ex_master(e)
             defect = defect + (p%ex_real(2, e) * ct%mass(n) * dot_product(vm(:, n) - &
                 vm(:, c), um(:, c))) * um(:, c)
-            if (.not. any(group(:ngroup) == c)) call join_group(c)
+            ! The master's mass in this group: its part of M(m) in
+            ! proportion to the slave mass this slave merged into it.
+            if (merged(c) > 0.0_rk) then
+              call join_group(c, ct%mass(c) * p%ex_real(2, e) * ct%mass(n) / merged(c))
+            else
+              call join_group(c, ct%mass(c))
+            end if
           end do
         else
           ! No facet overlap (the slave beside the master's edge), so
           ! nothing was exchanged: the group is the primary segment.
           do c = 1, 4
-            if (.not. any(group(:ngroup) == p%b%segments(c, p%primary(q)%segment))) &
-                call join_group(p%b%segments(c, p%primary(q)%segment))
+            call join_group(p%b%segments(c, p%primary(q)%segment), &
+                ct%mass(p%b%segments(c, p%primary(q)%segment)))
           end do
         end if
-        call join_group(n)
-        dv = -defect / sum(ct%mass(group(:ngroup)))
+        call join_group(n, ct%mass(n))
+        dv = -defect / sum(share(:ngroup))
         do c = 1, ngroup
           call add_record(out, ct%all_of(group(c)), k, 5_i8 * int(ct%nall, i8) + &
-              65536_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), ct%mass(group(c)) * dv)
+              65536_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), share(c) * dv)
         end do
       end if
       sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &
@@ -327,16 +338,29 @@ contains
 
   contains
 
-    subroutine join_group(node)
+    !> Add mass to node's share of the group (a new member if it is not one).
+    subroutine join_group(node, mass)
       integer, intent(in) :: node
+      real(rk), intent(in) :: mass
       integer, allocatable :: grown(:)
+      real(rk), allocatable :: grown_share(:)
+      integer :: i
+      do i = 1, ngroup
+        if (group(i) == node) then
+          share(i) = share(i) + mass
+          return
+        end if
+      end do
       if (ngroup == size(group)) then
-        allocate(grown(2 * ngroup))
+        allocate(grown(2 * ngroup), grown_share(2 * ngroup))
         grown(:ngroup) = group(:ngroup)
+        grown_share(:ngroup) = share(:ngroup)
         call move_alloc(grown, group)
+        call move_alloc(grown_share, share)
       end if
       ngroup = ngroup + 1
       group(ngroup) = node
+      share(ngroup) = mass
     end subroutine join_group
 
   end subroutine dam_put_back
@@ -348,7 +372,8 @@ contains
     type(contact_t), intent(in) :: ct
     type(records_t), intent(in) :: r
     real(rk), intent(in) :: v_old(:, :), force(:, :), dt
-    real(rk), intent(out) :: vmatch(:, :, :) !< (1:3) velocity, (4:6) matching normal
+    !> (1:3) velocity, (4:6) matching normal, (7) slave mass merged
+    real(rk), intent(out) :: vmatch(:, :, :)
     logical, intent(out) :: touched(:, :)
     real(rk), allocatable :: mbar(:, :), fbar(:, :, :), pbar(:, :, :), nmaster(:, :, :)
     real(rk) :: unit(3), vn, mass
@@ -382,13 +407,14 @@ contains
       mass = ct%all_mass(ct%own_contact(i))
       do k = 1, ct%npair
         vmatch(1:3, i, k) = v_old(:, l) + dt * force(:, l) / mass
-        vmatch(4:6, i, k) = 0.0_rk
+        vmatch(4:7, i, k) = 0.0_rk
         if (.not. touched(i, k)) cycle
         if (.not. norm2(nmaster(:, i, k)) > 0.0_rk) cycle
         unit = nmaster(:, i, k) / norm2(nmaster(:, i, k))
         vn = dam_merged_normal_velocity(mbar(i, k), pbar(:, i, k), fbar(:, i, k), unit, dt)
         vmatch(1:3, i, k) = vmatch(1:3, i, k) + (vn - dot_product(vmatch(1:3, i, k), unit)) * unit
         vmatch(4:6, i, k) = unit
+        vmatch(7, i, k) = mbar(i, k) - mass
       end do
     end do
   end subroutine match_masters

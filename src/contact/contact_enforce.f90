@@ -378,14 +378,14 @@ contains
       call sum_records(dlm_out, fck, has)
       if (any_dam) then
         call send_records(dam_out, ct%all_owner, ct%own_of, ct%nown)
-        if (.not. allocated(vmatch)) allocate(vmatch(6, ct%nown, ct%npair), &
+        if (.not. allocated(vmatch)) allocate(vmatch(7, ct%nown, ct%npair), &
             touched(ct%nown, ct%npair))
         call match_masters(ct, dam_out, v_old, force, dt, vmatch, touched)
         call scatter_nodes(ct, vmatch, vm_local)
         call lap(ct%migrate_seconds)
         do k = first, last
           if (ct%pairs(k)%method == METHOD_DAM) call dam_put_back(ct, ct%pairs(k), k, dt, &
-              vm_local(1:3, :, k), vm_local(4:6, :, k), putback)
+              vm_local(1:3, :, k), vm_local(4:6, :, k), vm_local(7, :, k), putback)
         end do
         call lap(ct%enforce_seconds)
         call send_records(putback, ct%all_owner, ct%own_of, ct%nown)
