@@ -18,6 +18,7 @@
 !> the neighbour is the lowest-numbered other one.
 module contact_surface
   use core_kinds, only: rk, ik, i8
+  use core_sort, only: sort_values
   use core_status, only: status_t
   use mesh_geometry, only: HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
@@ -321,7 +322,7 @@ contains
     integer, intent(in) :: s
     integer, intent(out) :: list(:)
     integer, intent(out) :: n
-    integer :: c, k, e, t, i
+    integer :: c, k, e, t
     n = 0
     do c = 1, 4
       k = surface_node_index(surf, surf%segments(c, s))
@@ -333,17 +334,7 @@ contains
         list(n) = t
       end do
     end do
-    ! ascending
-    do i = 2, n
-      t = list(i)
-      k = i - 1
-      do while (k >= 1)
-        if (list(k) <= t) exit
-        list(k + 1) = list(k)
-        k = k - 1
-      end do
-      list(k + 1) = t
-    end do
+    call sort_values(list(:n))
   end subroutine master_neighbourhood
 
   !> DAM self-contact: a node is the slave of a segment only from the side

@@ -15,7 +15,7 @@ module mesh_gmsh
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
-  use core_sort, only: sort_order
+  use core_sort, only: sort_order, sort_values
   use core_text, only: itoa => to_text, i8toa => to_text
   use mesh_geometry, only: hex_volume, HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
@@ -1089,18 +1089,9 @@ contains
   pure function sorted_key(nodes) result(key)
     integer, intent(in) :: nodes(:)
     integer(i8) :: key(size(nodes) / 2)
-    integer :: s(size(nodes)), i, j, t
+    integer :: s(size(nodes)), i
     s = nodes
-    do i = 2, size(s)
-      t = s(i)
-      j = i - 1
-      do while (j >= 1)
-        if (s(j) <= t) exit
-        s(j + 1) = s(j)
-        j = j - 1
-      end do
-      s(j + 1) = t
-    end do
+    call sort_values(s)
     do i = 1, size(key)
       key(i) = int(s(2 * i - 1), i8) * SHIFT + int(s(2 * i), i8)
     end do
