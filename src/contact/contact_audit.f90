@@ -54,6 +54,12 @@ module contact_audit
   integer, parameter :: FEATURE_FACE = 0 !< 1, 2, 3: edges ab, bc, ca; 4, 5, 6: vertices a, b, c
   !> Default tolerance: this fraction of the smaller adjacent segment's size.
   real(rk), parameter :: SIZE_FRACTION = 0.05_rk
+  !> Neighbouring segments whose normals turn by more than this angle meet at
+  !> a crease of the body (a cube's edge, a rod's rim), which the facets
+  !> represent exactly: not faceting of a smooth surface, so no sagitta.
+  !> 45 degrees: a smooth surface meshed with at least two segments per
+  !> quarter turn stays below it, and a right-angled edge is above it.
+  real(rk), parameter :: CREASE_ANGLE = 0.7853981633974483_rk
   !> A closest point on a free boundary with a sideways offset beyond this
   !> fraction of the segment size is beside the surface (outside).
   real(rk), parameter :: LATERAL_FRACTION = 1.0e-3_rk
@@ -181,6 +187,8 @@ contains
         dist = norm2(centre(:, t) - centre(:, s))
         if (.not. dist > 0.0_rk) cycle
         theta = atan2(norm2(cross(qn(:, s), qn(:, t))), dot_product(qn(:, s), qn(:, t)))
+        ! A crease (a body's edge), which the facets represent exactly.
+        if (theta > CREASE_ANGLE) cycle
         kappa = max(kappa, theta / dist)
       end do
       diag = max(norm2(p(:, 3) - p(:, 1)), norm2(p(:, 4) - p(:, 2)))

@@ -36,14 +36,15 @@
 module contact_dlm
   use core_kinds, only: rk, i8
   use contact_geometry, only: tangent_basis, segment_box, project_facets, boxes_meet, &
-      triangle_overlap_2d, plane_offset, covered, FACET_CORNER, SEGMENT_FACET_COUNT
+      triangle_overlap_2d, plane_offset, covered, OVERLAP_VERTICES, FACET_CORNER, &
+      SEGMENT_FACET_COUNT
   use contact_records, only: records_t, add_record
   use contact_state, only: FORM_VELOCITY, FACING, AREA_TOLERANCE, interface_t, contact_t, &
       geometry_update
   use contact_kernels, only: dlm_pair_force, dlm_pair_friction
   implicit none
   private
-  public :: dlm_step
+  public :: dlm_step, dlm_cover
 
   !> Default fraction of a facet pair's penetration removed per step in the
   !> velocity form (see dlm_step).
@@ -69,7 +70,8 @@ contains
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, wh, wd, t1(3), t2(3), origin(3)
-    real(rk) :: allowance, kept
+    real(rk) :: allowance, kept, poly(2, OVERLAP_VERTICES), deepest, corner(3)
+    integer :: npoly, v
     real(rk) :: box_a(4, SEGMENT_FACET_COUNT), box_b(4, SEGMENT_FACET_COUNT), seg_a(4), seg_b(4)
     real(rk) :: a2(2, 3, SEGMENT_FACET_COUNT), b2(2, 3, SEGMENT_FACET_COUNT), centre2(2)
     integer :: m, sa, sb, i, j, nodeh, noded
@@ -79,7 +81,8 @@ contains
     call geometry_update(ct%x, p%b, p%gb)
     p%nfp = 0
     if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_share(2, 64), &
-        p%fp_normal(3, 64), p%fp_pen(64), p%fp_area(64), p%fp_excess(64), p%fp_key(64))
+        p%fp_normal(3, 64), p%fp_pen(64), p%fp_area(64), p%fp_excess(64), p%fp_gated(64), &
+        p%fp_key(64))
     associate(ga => p%ga, gb => p%gb)
       do m = 1, size(p%segment_pairs, 2)
         sa = p%segment_pairs(1, m)
@@ -121,9 +124,9 @@ contains
           do j = 1, SEGMENT_FACET_COUNT
             if (.not. boxes_meet(box_a(:, i), box_b(:, j))) cycle
             if (a_hits) then
-              call triangle_overlap_2d(a2(:, :, i), b2(:, :, j), s0, centre2)
+              call triangle_overlap_2d(a2(:, :, i), b2(:, :, j), s0, centre2, poly, npoly)
             else
-              call triangle_overlap_2d(b2(:, :, j), a2(:, :, i), s0, centre2)
+              call triangle_overlap_2d(b2(:, :, j), a2(:, :, i), s0, centre2, poly, npoly)
             end if
             if (.not. s0 > AREA_TOLERANCE * min(ga%area(i, sa), gb%area(j, sb))) cycle
             centroid = origin + centre2(1) * t1 + centre2(2) * t2
@@ -142,6 +145,26 @@ contains
               wh = covered(gb%normal(:, j, sb), s0, nrm) / gb%nodal_area(nodeh)
               wd = covered(ga%normal(:, i, sa), s0, nrm) / ga%nodal_area(noded)
             end if
+            ! The penetration of the pair is taken at the overlap's deepest
+            ! vertex (the two facets' planes differ linearly over the
+            ! overlap, so a vertex holds the extreme): at a convex edge or
+            ! corner that meets the other surface the centroid lies up the
+            ! slope and let the edge sink by the slope times its distance
+            ! (docs/contact.md, 9.3).
+            deepest = pen
+            do v = 1, npoly
+              corner = origin + poly(1, v) * t1 + poly(2, v) * t2
+              if (a_hits) then
+                deepest = max(deepest, plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), &
+                    corner, nrm) - plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), &
+                    corner, nrm))
+              else
+                deepest = max(deepest, plane_offset(gb%facets(:, 1, j, sb), gb%normal(:, j, sb), &
+                    corner, nrm) - plane_offset(ga%facets(:, 1, i, sa), ga%normal(:, i, sa), &
+                    corner, nrm))
+              end if
+            end do
+            pen = deepest
             ! The initial penetration the deck kept (contact_initial) is
             ! held, not pushed out.
             kept = max(p%offset(ct%all_of(nodeh)), p%offset(ct%all_of(noded)))
@@ -162,7 +185,7 @@ contains
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: nodeh, noded
     real(rk), intent(in) :: wh, wd !< the shares of the hitting and target node
-    real(rk), intent(in) :: pen !< penetration at the overlap centroid (also the gate)
+    real(rk), intent(in) :: pen !< penetration at the overlap's deepest vertex (also the gate)
     real(rk), intent(in) :: s0, nrm(3) !< overlap area, common normal
     real(rk), intent(in) :: excess !< penetration beyond the recovery allowance (>= 0)
     integer(i8), intent(in) :: key !< global order: segment pair, facet of a, facet of b
@@ -175,6 +198,7 @@ contains
       call grow_real1(p%fp_pen, n)
       call grow_real1(p%fp_area, n)
       call grow_real1(p%fp_excess, n)
+      call grow_logical1(p%fp_gated, n)
       call grow_key(p%fp_key, n)
     end if
     p%nfp = p%nfp + 1
@@ -215,6 +239,15 @@ contains
       call move_alloc(b, a)
     end subroutine grow_real1
 
+    subroutine grow_logical1(a, n)
+      logical, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, allocatable :: b(:)
+      allocate(b(n))
+      b(:size(a)) = a
+      call move_alloc(b, a)
+    end subroutine grow_logical1
+
     subroutine grow_key(a, n)
       integer(i8), allocatable, intent(inout) :: a(:)
       integer, intent(in) :: n
@@ -226,14 +259,53 @@ contains
 
   end subroutine add_facet_pair
 
-  !> DLM: every overlapping facet pair of facing segments is a 1D contact pair
-  !> (geometry from dlm_geometry, forces of the stage).
-  subroutine dlm_step(ct, p, k, dt, final, out)
+  !> DLM, first round of a stage: the geometry (in the predictor), each facet
+  !> pair's gate, and the shares of the gated pairs of every node, one record
+  !> per pair and node for the owners to sum (docs/contact.md, 5: the shares
+  !> of a node's gated pairs are scaled to sum to one, so that the node's
+  !> whole mass takes part in stopping it; a node at a convex edge or corner
+  !> touches the other surface with a sliver of its area only, and with the
+  !> raw shares its approach was stopped in proportion to that sliver).
+  subroutine dlm_cover(ct, p, k, dt, final, out)
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: k !< the interface's number
     real(rk), intent(in) :: dt !< the stage's step
     logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
+    type(records_t), intent(inout) :: out !< per gated pair and node: its share
+    real(rk) :: nrm(3), wh, wd, mh, md, fh, w
+    integer :: q, nodeh, noded
+
+    if (.not. final .or. .not. allocated(p%fp_node)) call dlm_geometry(ct, p)
+    do q = 1, p%nfp
+      nodeh = p%fp_node(1, q)
+      noded = p%fp_node(2, q)
+      wh = p%fp_share(1, q)
+      wd = p%fp_share(2, q)
+      nrm = p%fp_normal(:, q)
+      mh = ct%mass(nodeh) * wh
+      md = ct%mass(noded) * wd
+      w = dot_product(ct%v(:, nodeh), nrm) - dot_product(ct%v(:, noded), nrm)
+      ! The gate: the penetration at the overlap's deepest vertex (dlm_geometry).
+      call dlm_pair_force(p%form, mh, md, dot_product(ct%f(:, nodeh), nrm) * wh, &
+          dot_product(ct%f(:, noded), nrm) * wd, w, p%fp_pen(q), p%fp_pen(q), dt, 0.0_rk, &
+          fh, p%fp_gated(q))
+      if (.not. p%fp_gated(q)) cycle
+      call add_record(out, ct%all_of(nodeh), k, p%fp_key(q), [wh])
+      call add_record(out, ct%all_of(noded), k, p%fp_key(q), [wd])
+    end do
+  end subroutine dlm_cover
+
+  !> DLM: every overlapping facet pair of facing segments is a 1D contact pair
+  !> (geometry and gates from dlm_cover, forces of the stage).
+  subroutine dlm_step(ct, p, k, dt, cover, out)
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    integer, intent(in) :: k !< the interface's number
+    real(rk), intent(in) :: dt !< the stage's step
+    !> (ncn) per local node, the sum of its shares over the gated pairs of
+    !> the interface (all parts; 0: in none)
+    real(rk), intent(in) :: cover(:)
     type(records_t), intent(inout) :: out !< the contributions, for the owners
     real(rk), allocatable :: lambda(:), fc(:, :), ft(:, :)
     logical, allocatable :: gated(:)
@@ -242,7 +314,6 @@ contains
     real(rk) :: pen_sq, area_sum
     integer :: q, i, nodeh, noded, active, sweep
 
-    if (.not. final .or. .not. allocated(p%fp_node)) call dlm_geometry(ct, p)
     allocate(lambda(p%nfp), gated(p%nfp), fc(3, ct%ncn))
     lambda = 0.0_rk
     fc = 0.0_rk
@@ -255,8 +326,8 @@ contains
       do q = 1, p%nfp
         nodeh = p%fp_node(1, q)
         noded = p%fp_node(2, q)
-        wh = p%fp_share(1, q)
-        wd = p%fp_share(2, q)
+        wh = share(1, q)
+        wd = share(2, q)
         pen = p%fp_pen(q)
         nrm = p%fp_normal(:, q)
         mh = ct%mass(nodeh) * wh
@@ -268,9 +339,9 @@ contains
         if (sweep == 1) then
           fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
           fd_ = dot_product(ct%f(:, noded), nrm) * wd
-          ! The gate: the penetration at the overlap centroid (dlm_geometry).
+          ! The gate was decided in dlm_cover (the one its shares count).
           call dlm_pair_force(p%form, mh, md, fh_, fd_, w, pen, p%fp_pen(q), dt, &
-              recovery_speed(q), fh, gated(q))
+              recovery_speed(q), fh, gated(q), p%fp_gated(q))
         else
           if (.not. gated(q) .or. p%form /= FORM_VELOCITY) cycle
           ! Residual approach at t^n+1 with every contact force so far.
@@ -295,8 +366,8 @@ contains
         if (.not. lambda(q) < 0.0_rk) cycle
         nodeh = p%fp_node(1, q)
         noded = p%fp_node(2, q)
-        wh = p%fp_share(1, q)
-        wd = p%fp_share(2, q)
+        wh = share(1, q)
+        wd = share(2, q)
         nrm = p%fp_normal(:, q)
         ft(:, q) = dlm_pair_friction(p%spec%friction, ct%mass(nodeh) * wh, &
             ct%mass(noded) * wd, ct%v(:, nodeh), ct%v(:, noded), ct%f(:, nodeh) * wh, &
@@ -359,8 +430,18 @@ contains
     !> t^n over the step (0 for a gap).
     pure real(rk) function recovery_speed(q) result(speed)
       integer, intent(in) :: q
-      speed = -p%recovery * p%fp_excess(q) / dt
+      speed = -p%recovery * p%fp_excess(q) * ct%landing / dt
     end function recovery_speed
+
+    !> Share c of facet pair q (c = 1 hitting, 2 target node), scaled by the
+    !> node's cover: its gated shares then sum to one.
+    pure real(rk) function share(c, q)
+      integer, intent(in) :: c, q
+      integer :: node
+      node = p%fp_node(c, q)
+      share = p%fp_share(c, q)
+      if (cover(node) > 0.0_rk) share = share / cover(node)
+    end function share
 
   end subroutine dlm_step
 

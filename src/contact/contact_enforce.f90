@@ -55,7 +55,7 @@ module contact_enforce
       FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
       surface_geometry_t, selection_t, contact_t, initial_offsets_t, step_sums_t
   use contact_audit, only: surface_sagitta, audit_reach
-  use contact_dlm, only: dlm_step, DLM_DEFAULT_RECOVERY
+  use contact_dlm, only: dlm_step, dlm_cover, DLM_DEFAULT_RECOVERY
   use contact_dam, only: dam_exchange, dam_put_back, match_masters, dam_forces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
@@ -354,18 +354,38 @@ contains
     !> owners' sums, and their contact forces added to force and ct%fc.
     subroutine stage_round(first, last)
       integer, intent(in) :: first, last
-      type(records_t) :: dlm_out, dam_out, putback
+      type(records_t) :: dlm_out, dam_out, putback, cover_out
+      real(rk), allocatable :: cover(:, :, :), cover_local(:, :, :)
+      logical, allocatable :: covered(:, :)
       real(rk) :: fsum(3)
-      logical :: any_dam
+      logical :: any_dam, any_dlm
       call take(ct%kept(1), dlm_out, 3)
       call take(ct%kept(2), dam_out, 10)
       call take(ct%kept(3), putback, 3)
+      call take(ct%kept(4), cover_out, 1)
       any_dam = .false.
+      any_dlm = any(ct%pairs(first:last)%method == METHOD_DLM)
+      if (any_dlm) then
+        ! DLM's first round: each node's shares over its gated pairs, summed
+        ! by the owners in key order and sent back to the parts.
+        do k = first, last
+          if (ct%pairs(k)%method == METHOD_DLM) call dlm_cover(ct, ct%pairs(k), k, dt, &
+              final, cover_out)
+        end do
+        call lap(ct%enforce_seconds)
+        call send_records(cover_out, ct%all_owner, ct%own_of, ct%nown)
+        allocate(cover(1, ct%nown, ct%npair), covered(ct%nown, ct%npair))
+        cover = 0.0_rk
+        covered = .false.
+        call sum_records(cover_out, cover, covered)
+        call scatter_nodes(ct, cover, cover_local)
+        call lap(ct%migrate_seconds)
+      end if
       do k = first, last
         ct%pairs(k)%sums = step_sums_t()
         select case (ct%pairs(k)%method)
         case (METHOD_DLM)
-          call dlm_step(ct, ct%pairs(k), k, dt, final, dlm_out)
+          call dlm_step(ct, ct%pairs(k), k, dt, cover_local(1, :, k), dlm_out)
         case (METHOD_DAM)
           any_dam = .true.
           call dam_exchange(ct, ct%pairs(k), k, dt, final, dam_out)
@@ -402,6 +422,7 @@ contains
       call take(dlm_out, ct%kept(1), 3)
       call take(dam_out, ct%kept(2), 10)
       call take(putback, ct%kept(3), 3)
+      call take(cover_out, ct%kept(4), 1)
     end subroutine stage_round
 
     subroutine lap(total)

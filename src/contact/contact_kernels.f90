@@ -56,7 +56,7 @@ contains
   !> DLM force of one facet pair on its hitting side along the normal, and
   !> whether the pair is gated (see the module notes).
   pure subroutine dlm_pair_force(form, mh, md, fh_n, fd_n, w, pen, gate, dt, target, fh, &
-      gated)
+      gated, gate_open)
     integer, intent(in) :: form !< KERNEL_COORDINATE, KERNEL_VELOCITY or KERNEL_COMBINED
     real(rk), intent(in) :: mh, md !< lumped masses of the two sides
     real(rk), intent(in) :: fh_n, fd_n !< their hydro forces along the normal
@@ -67,10 +67,17 @@ contains
     real(rk), intent(in) :: target !< velocity form: approach speed wanted at t + dt (<= 0)
     real(rk), intent(out) :: fh
     logical, intent(out) :: gated
+    !> the gate decided already (with the pair's raw shares; the gate does
+    !> not depend on them but for round-off), so that it is the one counted
+    logical, intent(in), optional :: gate_open
     real(rk) :: mu, pen_free, goal
     mu = mh * md / (mh + md)
-    pen_free = gate + dt * w + 0.5_rk * dt * dt * (fh_n / mh - fd_n / md)
-    gated = pen_free > 0.0_rk .or. form == KERNEL_COORDINATE
+    if (present(gate_open)) then
+      gated = gate_open .or. form == KERNEL_COORDINATE
+    else
+      pen_free = gate + dt * w + 0.5_rk * dt * dt * (fh_n / mh - fd_n / md)
+      gated = pen_free > 0.0_rk .or. form == KERNEL_COORDINATE
+    end if
     fh = 0.0_rk
     select case (form)
     case (KERNEL_COORDINATE)

@@ -130,9 +130,10 @@ module contact_state
     integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
     real(rk), allocatable :: fp_share(:, :) !< (2, nfp) shares of the hitting and target node
     real(rk), allocatable :: fp_normal(:, :) !< (3, nfp) common normal (from the hitting side)
-    real(rk), allocatable :: fp_pen(:) !< (nfp) penetration at the overlap centroid (the gate)
+    real(rk), allocatable :: fp_pen(:) !< (nfp) penetration at the overlap's deepest vertex (the gate)
     real(rk), allocatable :: fp_area(:) !< (nfp) overlap area
     real(rk), allocatable :: fp_excess(:) !< (nfp) penetration beyond the recovery allowance
+    logical, allocatable :: fp_gated(:) !< (nfp) the pair's gate in this stage (dlm_cover)
     type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
     type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
     real(rk), allocatable :: rbf(:, :) !< DAM: (4, nprimary) put-back weights
@@ -202,6 +203,10 @@ module contact_state
     integer, allocatable :: send_own(:) !< owned index of each, by part
     integer(i8) :: next_search = 0 !< cycle of the next global search and RCB
     real(rk) :: speed = 0.0_rk !< largest contact node speed at t^n (all ranks)
+    !> The cycle's step over its stable step (< 1 when the step is cut short
+    !> to land on a dump time or t_end): DLM's recovery speed is taken over
+    !> the stable step, so a short landing step does not fling nodes apart.
+    real(rk) :: landing = 1.0_rk
     integer :: rebuilds = 0 !< global searches (RCB rebuilds) so far
     integer :: recuts = 0 !< searches whose RCB was cut again (load drift)
     integer :: balanced_searches = 0 !< searches that found pairs
@@ -212,7 +217,8 @@ module contact_state
     !> time in the first collective of each call: waiting for the slowest rank's
     !> hydro (load imbalance), kept out of the contact times
     real(rk) :: wait_seconds = 0.0_rk
-    type(records_t) :: kept(3) !< record buffers (DLM, DAM exchange, DAM put-back) between stages
+    !> record buffers (DLM, DAM exchange, DAM put-back, DLM cover) between stages
+    type(records_t) :: kept(4)
     ! The audit (contact_monitor).
     real(rk), allocatable :: gap_own(:) !< (nown) smallest signed gap of each owned node
     logical :: audit_due = .true. !< a search ran since the last audit

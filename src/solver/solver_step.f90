@@ -42,6 +42,7 @@ contains
     real(rk) :: work, contact_work
     call timers%start('step')
     state%dt = dt
+    if (ct%npair > 0) ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
     call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
         work, contact_work, timers)
     state%boundary_work = state%boundary_work + par_sum(work)
