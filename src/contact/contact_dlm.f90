@@ -10,9 +10,10 @@
 !>   velocity:   fh = mu (Fd/Md - Fh/Mh + (vd - vh - e/dt)/dt), gated by
 !>               pen_free > 0, e = recovery * max(pen - allowance, 0): the
 !>               approach stopped, and a fraction `recovery` (deck, default
-!>               0.2) of the penetration beyond an allowance (2% of the
-!>               smaller segment's size) removed per step (Baumgarte-type
-!>               position feedback). Without it the one pass, which
+!>               0.2) of the penetration beyond an allowance (docs/contact.md,
+!>               9.3) removed per stable step (Baumgarte-type position
+!>               feedback; a step cut short to land on a dump time keeps the
+!>               stable step's recovery speed, ct%landing). Without it the one pass, which
 !>               under-corrects a node whose neighbours move differently, has
 !>               nothing to pull a drifting node back: on the curved Sedov
 !>               split the ball's valence-3 vertex escaped through the gas
@@ -26,6 +27,9 @@
 !>               the velocity form would leave: half of r is removed per step
 !>               by a force pair (momentum exact), without the rebound of the
 !>               coordinate form.
+!> pen is taken at the overlap's deepest vertex, and the shares of a node's
+!> gated pairs are scaled to sum to one (dlm_cover), so that a convex edge or
+!> corner is stopped as a whole node (docs/contact.md, 5 and 9.3).
 !> fh = min(fh, 0) in every form. Default: velocity. The equal-bars test
 !> rejects the coordinate form (15 openings during the contact, interface
 !> velocity 11% of v0); velocity and combined both pass it (residual
