@@ -77,10 +77,10 @@ contains
           state%zone_density, state%zone_energy, state%zone_pressure, state%zone_sound_speed)
     end do
     if (opt%viscosity == VISCOSITY_EDGE) then
-      if (.not. allocated(state%zone_edge_q)) allocate(state%zone_edge_q(4, mesh%nzone))
+      if (.not. allocated(state%zone_edge_q)) allocate(state%zone_edge_q(2, mesh%nzone))
       do m = 1, size(materials)
         do z = mz%start(m), mz%start(m + 1) - 1
-          state%zone_edge_q(4, mz%list(z)) = shock_factor(materials(m))
+          state%zone_edge_q(2, mz%list(z)) = shock_factor(materials(m))
         end do
       end do
       ! As for the scalar limiter: owned zones compute it, ghosts receive it.

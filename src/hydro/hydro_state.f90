@@ -47,8 +47,8 @@ module hydro_state
     real(rk), allocatable :: zone_length(:) !< characteristic length
     real(rk), allocatable :: zone_divergence(:) !< div v = (dV/dt)/V
     real(rk), allocatable :: zone_gradient(:, :) !< (3, nzone) stretching rates (limiter)
-    !> edge viscosity only, (4, nzone): 1 - psi_d of the limiter along each logical
-    !> direction d (1..3) and the zone's strong-shock factor (gamma + 1)/4 (4)
+    !> edge viscosity only, (2, nzone): 1 - psi, psi the zone's limiter (1), and
+    !> the zone's strong-shock factor (gamma + 1)/4 (2)
     real(rk), allocatable :: zone_edge_q(:, :)
     real(rk), allocatable :: zone_bmatrix(:, :, :) !< (3, 8, nzone) dV/dx at x^n
     real(rk), allocatable :: zone_hourglass(:, :, :) !< (3, 4, nzone) stiffness state
