@@ -158,7 +158,7 @@ contains
     end if
     if (opt%viscosity == VISCOSITY_EDGE) call zone_edge_forces(mesh%nzone, mesh%zone_node, x, v, &
         state%zone_volume, state%zone_density, state%zone_sound_speed, state%zone_edge_q, &
-        opt%q_linear, opt%q_quadratic, state%corner_force)
+        opt%q_linear, opt%q_quadratic, opt%q_linear_limited, state%corner_force)
     ! Deviatoric part: F_k -= s . dV/dx_k (sigma = -p I + s); zero rows cost little.
     if (present(stress)) then
       do z = 1, mesh%nzone

@@ -425,20 +425,23 @@ contains
   !> -mu A |du|^2 <= 0, goes into the zone's internal energy through the
   !> compatible update. A tangled zone gets none.
   subroutine zone_edge_forces(n, zone_node, x, v, volume, density, sound_speed, edge_q, &
-      q_linear, q_quadratic, force)
+      q_linear, q_quadratic, linear_limited, force)
     integer, intent(in) :: n
     integer, intent(in) :: zone_node(:, :)
     real(rk), intent(in) :: x(:, :), v(:, :), volume(:), density(:), sound_speed(:)
     real(rk), intent(in) :: edge_q(:, :) !< (2, nzone) 1 - psi and (gamma + 1)/4
     real(rk), intent(in) :: q_linear, q_quadratic
+    logical, intent(in) :: linear_limited !< (1 - psi) on the linear term too
     real(rk), intent(inout) :: force(:, :, :)
     real(rk) :: xz(3, 8), vz(3, 8), centre(3), face(3, 6), dx(3), du(3), mid(3), r(3), s(3)
-    real(rk) :: area(3), du2, dx2, dux, k2, lin2, mu, f(3), w
+    real(rk) :: area(3), du2, dx2, dux, k2, lin2, mu, f(3), wq, wl
     integer :: z, k, e, ia, ib, node
     do z = 1, n
       if (.not. (volume(z) > 0.0_rk)) cycle
-      w = edge_q(1, z)
-      if (.not. (w > 0.0_rk)) cycle
+      wq = edge_q(1, z)
+      wl = wq
+      if (.not. linear_limited) wl = 1.0_rk
+      if (.not. (wl > 0.0_rk)) cycle
       do k = 1, 8
         node = zone_node(k, z)
         xz(:, k) = x(:, node)
@@ -469,7 +472,8 @@ contains
         area(2) = r(3) * s(1) - r(1) * s(3)
         area(3) = r(1) * s(2) - r(2) * s(1)
         du2 = du(1)**2 + du(2)**2 + du(3)**2
-        mu = density(z) * w * (k2 * sqrt(du2) + sqrt(k2 * k2 * du2 + lin2)) * 0.5_rk * &
+        mu = density(z) * (wq * k2 * sqrt(du2) + sqrt(wq * wq * k2 * k2 * du2 + wl * wl * lin2)) &
+            * 0.5_rk * &
             abs(area(1) * dx(1) + area(2) * dx(2) + area(3) * dx(3)) / sqrt(dx2)
         f = mu * du
         force(:, ia, z) = force(:, ia, z) + f
