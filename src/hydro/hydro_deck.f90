@@ -13,7 +13,8 @@ module hydro_deck
   use mesh_global, only: NAME_LEN
   use material_table, only: material_t, EOS_MIE_GRUNEISEN
   use material_deck, only: block_spec_t
-  use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
+  use hydro_state, only: hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS, &
+      VISCOSITY_SCALAR, VISCOSITY_EDGE
   use hydro_boundary, only: boundary_spec_t, BC_FREE, BC_SYMMETRY, BC_VELOCITY, BC_PRESSURE, &
       BC_WALL
   use hydro_initial, only: region_t
@@ -22,7 +23,9 @@ module hydro_deck
   public :: read_hydro, read_region, read_boundary
 
   !> &hydro: artificial viscosity and hourglass control.
-  type(key_t), parameter, public :: HYDRO_KEYS(6) = [ &
+  type(key_t), parameter, public :: HYDRO_KEYS(7) = [ &
+      key_t("viscosity", "c", "'scalar'", "", &
+      "artificial viscosity: 'scalar' (zone q) or 'edge' (Caramana-Shashkov-Whalen edge q)"), &
       key_t("q_linear", "r", "0.5", "", &
       "linear viscosity coefficient C1, >= 0"), &
       key_t("q_quadratic", "r", "2/3", "", &
@@ -88,11 +91,11 @@ contains
     type(hydro_options_t), intent(inout) :: opt
     type(status_t), intent(inout) :: status
     real(rk) :: q_linear, q_quadratic, hourglass_coefficient
-    character(len=32) :: hourglass
+    character(len=32) :: hourglass, viscosity
     logical :: q_limiter, q_linear_limited
     integer :: ios
     character(len=256) :: msg
-    namelist /hydro/ q_linear, q_quadratic, q_limiter, q_linear_limited, hourglass, &
+    namelist /hydro/ viscosity, q_linear, q_quadratic, q_limiter, q_linear_limited, hourglass, &
         hourglass_coefficient
 
     q_limiter = opt%q_limiter
@@ -100,6 +103,8 @@ contains
     q_linear = opt%q_linear
     q_quadratic = opt%q_quadratic
     hourglass = 'viscous'
+    viscosity = 'scalar'
+    if (opt%viscosity == VISCOSITY_EDGE) viscosity = 'edge'
     hourglass_coefficient = opt%hourglass_coefficient
     read(sect, nml=hydro, iostat=ios, iomsg=msg)
     if (ios /= 0) call status%add('&hydro: cannot read the group: '//trim(msg))
@@ -118,6 +123,15 @@ contains
     case default
       call status%add('&hydro: hourglass: '''//trim(hourglass)//''' is not a hourglass '// &
           'control (valid: none, viscous, stiffness)')
+    end select
+    select case (to_lower(viscosity))
+    case ('scalar')
+      opt%viscosity = VISCOSITY_SCALAR
+    case ('edge')
+      opt%viscosity = VISCOSITY_EDGE
+    case default
+      call status%add('&hydro: viscosity: '''//trim(viscosity)//''' is not a viscosity '// &
+          '(valid: scalar, edge)')
     end select
     opt%q_linear = q_linear
     opt%q_quadratic = q_quadratic

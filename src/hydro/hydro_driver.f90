@@ -4,11 +4,13 @@
 module hydro_driver
   use core_kinds, only: rk
   use mesh_local, only: mesh_t
-  use material_table, only: material_t, material_eos, material_flow, STRENGTH_NONE
+  use material_table, only: material_t, material_eos, material_flow, STRENGTH_NONE, &
+      EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN
   use material_strength, only: deviatoric_update, velocity_gradient, equivalent_strain_rate
-  use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
+  use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
-      node_gather_forces, zone_time_step, zone_limited_viscosity
+      node_gather_forces, zone_time_step, zone_limited_viscosity, zone_edge_limiter, &
+      zone_edge_forces
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces, boundary_wall
   implicit none
   private
@@ -46,6 +48,8 @@ contains
 
   !> Geometry, density, EOS and viscosity of every local zone at positions x
   !> and velocities v. bad = first local zone with a non-positive volume.
+  !> With the edge viscosity the zone q is 0 and state%zone_edge_q holds the
+  !> edge limiter and the strong-shock factor (the forces are hydro_forces').
   subroutine hydro_zone_update(mesh, state, materials, mz, opt, bc, x, v, bad)
     type(mesh_t), intent(inout) :: mesh
     type(boundary_t), intent(in) :: bc
@@ -72,7 +76,19 @@ contains
       call material_eos(materials(m), mz%list(mz%start(m):mz%start(m + 1) - 1), &
           state%zone_density, state%zone_energy, state%zone_pressure, state%zone_sound_speed)
     end do
-    if (opt%q_limiter) then
+    if (opt%viscosity == VISCOSITY_EDGE) then
+      if (.not. allocated(state%zone_edge_q)) allocate(state%zone_edge_q(2, mesh%nzone))
+      do m = 1, size(materials)
+        do z = mz%start(m), mz%start(m + 1) - 1
+          state%zone_edge_q(2, mz%list(z)) = shock_factor(materials(m))
+        end do
+      end do
+      ! As for the scalar limiter: owned zones compute it, ghosts receive it.
+      call zone_edge_limiter(mesh%nzone_owned, mesh%face_neighbour, mesh%face_neighbour_face, &
+          bc%face_symmetric, state%zone_gradient, opt%q_limiter, state%zone_edge_q)
+      call mesh%zone_halo%exchange(state%zone_edge_q)
+      state%zone_viscosity = 0.0_rk
+    else if (opt%q_limiter) then
       ! The limiter needs face neighbours, which outer ghosts lack: owned zones
       ! compute q, ghosts receive it.
       call zone_limited_viscosity(mesh%nzone_owned, mesh%face_neighbour, &
@@ -86,6 +102,21 @@ contains
           state%zone_sound_speed, state%zone_length, state%zone_divergence, state%zone_viscosity)
     end if
   end subroutine hydro_zone_update
+
+  !> Strong-shock factor g of the edge viscosity: (gamma + 1)/4 for an ideal
+  !> gas; s/2 for Mie-Gruneisen (Us = c0 + s up: the strong-shock limit of
+  !> rho0 Us up is rho0 s up^2, as (gamma + 1)/2 rho0 up^2 for a gas).
+  pure real(rk) function shock_factor(mat)
+    type(material_t), intent(in) :: mat
+    select case (mat%eos)
+    case (EOS_IDEAL_GAS)
+      shock_factor = 0.25_rk * (mat%gamma + 1.0_rk)
+    case (EOS_MIE_GRUNEISEN)
+      shock_factor = 0.5_rk * mat%mg%s1
+    case default
+      shock_factor = 0.5_rk
+    end select
+  end function shock_factor
 
   !> Corner forces of every local zone and the force of every owned node
   !> (internal + applied pressure) at positions x, velocities v.
@@ -125,6 +156,9 @@ contains
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
           unused, unused, state%corner_force)
     end if
+    if (opt%viscosity == VISCOSITY_EDGE) call zone_edge_forces(mesh%nzone, mesh%zone_node, x, v, &
+        state%zone_volume, state%zone_density, state%zone_sound_speed, state%zone_edge_q, &
+        opt%q_linear, opt%q_quadratic, opt%q_linear_limited, state%corner_force)
     ! Deviatoric part: F_k -= s . dV/dx_k (sigma = -p I + s); zero rows cost little.
     if (present(stress)) then
       do z = 1, mesh%nzone
@@ -240,9 +274,15 @@ contains
     type(hydro_options_t), intent(in) :: opt
     real(rk), intent(out) :: dt
     integer, intent(out) :: zone, reason
-    call zone_time_step(mesh%nzone_owned, opt%cfl, opt%dvol_max, opt%q_linear, &
-        opt%q_quadratic, state%zone_length, state%zone_sound_speed, state%zone_divergence, &
-        dt, zone, reason)
+    if (opt%viscosity == VISCOSITY_EDGE) then
+      call zone_time_step(mesh%nzone_owned, opt%cfl, opt%dvol_max, opt%q_linear, &
+          opt%q_quadratic, state%zone_length, state%zone_sound_speed, state%zone_divergence, &
+          dt, zone, reason, state%zone_edge_q)
+    else
+      call zone_time_step(mesh%nzone_owned, opt%cfl, opt%dvol_max, opt%q_linear, &
+          opt%q_quadratic, state%zone_length, state%zone_sound_speed, state%zone_divergence, &
+          dt, zone, reason)
+    end if
   end subroutine hydro_time_step
 
   !> Local sums over owned zones per material m = zone_material(z):

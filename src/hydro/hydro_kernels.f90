@@ -9,7 +9,7 @@ module hydro_kernels
   private
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
   public :: node_gather_forces, zone_time_step
-  public :: zone_limited_viscosity
+  public :: zone_limited_viscosity, zone_edge_limiter, zone_edge_forces
 
   integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
   real(rk), parameter :: SYMMETRY_RATIO = 1.0_rk !< a mirror neighbour has the same rate
@@ -17,6 +17,16 @@ module hydro_kernels
   integer, parameter :: FACE_MINUS(3) = [6, 3, 1], FACE_PLUS(3) = [4, 5, 2]
   !> Logical direction normal to each face.
   integer, parameter :: FACE_DIRECTION(6) = [3, 3, 2, 1, 2, 1]
+  !> The 12 edges of the hex (VTK order; node k has the logical signs of
+  !> SIGN_XI, SIGN_ETA, SIGN_ZETA): their two nodes (4 edges along xi, then eta,
+  !> then zeta) and the two faces that share them, faces numbered 1 xi-, 2 xi+, 3 eta-, 4 eta+,
+  !> 5 zeta-, 6 zeta+ (EDGE_FACE_NODE).
+  integer, parameter :: EDGE_NODE(2, 12) = reshape([1, 2, 4, 3, 5, 6, 8, 7, &
+      1, 4, 2, 3, 5, 8, 6, 7, 1, 5, 2, 6, 3, 7, 4, 8], [2, 12])
+  integer, parameter :: EDGE_FACE(2, 12) = reshape([3, 5, 4, 5, 3, 6, 4, 6, &
+      1, 5, 2, 5, 1, 6, 2, 6, 1, 3, 2, 3, 2, 4, 1, 4], [2, 12])
+  integer, parameter :: EDGE_FACE_NODE(4, 6) = reshape([1, 4, 5, 8, 2, 3, 6, 7, &
+      1, 2, 5, 6, 3, 4, 7, 8, 1, 2, 3, 4, 5, 6, 7, 8], [4, 6])
 
 contains
 
@@ -233,25 +243,32 @@ contains
   end subroutine node_gather_forces
 
   !> Smallest stable step over zones 1..n: CFL with the viscous signal speed
-  !> b = C1 c + C2 L |D| in compression, dt = cfl L / (b + sqrt(b^2 + c^2)),
-  !> and the relative volume change limit dt = dvol_max / |D|.
+  !> b = C1 c + C2 f L |D| in compression, dt = cfl L / (b + sqrt(b^2 + c^2)),
+  !> and the relative volume change limit dt = dvol_max / |D|. f = 1, or
+  !> quadratic_factor(2, z) * 2 with the edge viscosity (its strong-shock
+  !> quadratic coefficient is C2 (gamma + 1)/2 in one dimension).
   subroutine zone_time_step(n, cfl, dvol_max, q_linear, q_quadratic, length, sound_speed, &
-      divergence, dt, zone, reason)
+      divergence, dt, zone, reason, quadratic_factor)
     integer, intent(in) :: n
     real(rk), intent(in) :: cfl, dvol_max, q_linear, q_quadratic
     real(rk), intent(in) :: length(:), sound_speed(:), divergence(:)
     real(rk), intent(out) :: dt !< smallest step (huge if n = 0)
     integer, intent(out) :: zone !< the zone that sets it
     integer, intent(out) :: reason !< DT_CFL or DT_VOLUME
+    real(rk), intent(in), optional :: quadratic_factor(:, :) !< (2, nzone) zone_edge_q
     integer :: z
-    real(rk) :: bq, c, trial
+    real(rk) :: bq, c, trial, c2
+    logical :: edge
+    edge = present(quadratic_factor)
+    c2 = q_quadratic
     dt = huge(1.0_rk)
     zone = 0
     reason = DT_CFL
     do z = 1, n
       c = sound_speed(z)
       bq = 0.0_rk
-      if (divergence(z) < 0.0_rk) bq = q_linear * c - q_quadratic * length(z) * divergence(z)
+      if (edge) c2 = 2.0_rk * q_quadratic * quadratic_factor(2, z)
+      if (divergence(z) < 0.0_rk) bq = q_linear * c - c2 * length(z) * divergence(z)
       if (bq + c > 0.0_rk) then
         trial = cfl * length(z) / (bq + sqrt(bq * bq + c * c))
         if (trial < dt) then
@@ -336,5 +353,133 @@ contains
     end function ratio
 
   end subroutine zone_limited_viscosity
+
+  !> Limiter of the edge viscosity, zones 1..n: edge_q(1, z) = 1 - phi with
+  !> phi the zone's limiter of zone_limited_viscosity (the compression-weighted
+  !> mean of the directional Christensen limiters over the directions the zone
+  !> is compressed along; phi = 1, no edge viscosity, when it is compressed
+  !> along none). With limited false, edge_q(1, z) = 1. edge_q(2, :) is left alone.
+  !> (A limiter per edge direction, 1 - phi_d, was tried: it lets the zones
+  !> along the symmetry axes of Noh's implosion collapse sideways, 30^3 tangles
+  !> at t = 0.5995.)
+  subroutine zone_edge_limiter(n, neighbour, neighbour_face, symmetric, gradient, limited, &
+      edge_q)
+    integer, intent(in) :: n
+    integer, intent(in) :: neighbour(:, :), neighbour_face(:, :) !< (6, nzone)
+    logical, intent(in) :: symmetric(:, :) !< (6, nzone) face on a symmetry plane
+    real(rk), intent(in) :: gradient(:, :) !< (3, nzone) stretching rates
+    logical, intent(in) :: limited
+    real(rk), intent(inout) :: edge_q(:, :) !< (2, nzone)
+    integer :: z, d
+    real(rk) :: g, rm, rp, phi, wsum
+    do z = 1, n
+      if (.not. limited) then
+        edge_q(1, z) = 1.0_rk
+        cycle
+      end if
+      phi = 0.0_rk
+      wsum = 0.0_rk
+      do d = 1, 3
+        g = gradient(d, z)
+        if (g >= 0.0_rk) cycle
+        rm = ratio(FACE_MINUS(d))
+        rp = ratio(FACE_PLUS(d))
+        phi = phi - g * max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk))
+        wsum = wsum - g
+      end do
+      if (wsum > 0.0_rk) then
+        edge_q(1, z) = 1.0_rk - phi / wsum
+      else
+        edge_q(1, z) = 0.0_rk
+      end if
+    end do
+
+  contains
+
+    real(rk) function ratio(face)
+      integer, intent(in) :: face
+      integer :: nb
+      nb = neighbour(face, z)
+      if (nb > 0) then
+        ratio = gradient(FACE_DIRECTION(neighbour_face(face, z)), nb) / g
+      else if (symmetric(face, z)) then
+        ratio = SYMMETRY_RATIO
+      else
+        ratio = 0.0_rk
+      end if
+    end function ratio
+
+  end subroutine zone_edge_limiter
+
+  !> Edge-centred artificial viscosity (E. J. Caramana, M. J. Shashkov and
+  !> P. P. Whalen, J. Comput. Phys. 144 (1998) 70-97), added to the corner
+  !> forces of zones 1..n. For each of a zone's 12 edges a -> b with
+  !> dx = x_b - x_a, du = v_b - v_a in compression (du . dx < 0):
+  !>   mu = rho (1 - psi) [C2 g |du| + sqrt(C2^2 g^2 |du|^2 + C1^2 c^2)],
+  !>   g = (gamma + 1)/4 (edge_q(2, z)), 1 - psi = edge_q(1, z) (zone_edge_limiter);
+  !> the edge's viscous stress mu |du| acts along du/|du| through A, the part
+  !> along the edge of the area vector of the zone's median-mesh surface that
+  !> separates a from b (the quadrilateral edge midpoint, face centre, zone
+  !> centre, face centre): F_a += mu A du, F_b -= mu A du. The pair is equal and
+  !> opposite (no momentum), and its work on the node velocities,
+  !> -mu A |du|^2 <= 0, goes into the zone's internal energy through the
+  !> compatible update. A tangled zone gets none.
+  subroutine zone_edge_forces(n, zone_node, x, v, volume, density, sound_speed, edge_q, &
+      q_linear, q_quadratic, linear_limited, force)
+    integer, intent(in) :: n
+    integer, intent(in) :: zone_node(:, :)
+    real(rk), intent(in) :: x(:, :), v(:, :), volume(:), density(:), sound_speed(:)
+    real(rk), intent(in) :: edge_q(:, :) !< (2, nzone) 1 - psi and (gamma + 1)/4
+    real(rk), intent(in) :: q_linear, q_quadratic
+    logical, intent(in) :: linear_limited !< (1 - psi) on the linear term too
+    real(rk), intent(inout) :: force(:, :, :)
+    real(rk) :: xz(3, 8), vz(3, 8), centre(3), face(3, 6), dx(3), du(3), mid(3), r(3), s(3)
+    real(rk) :: area(3), du2, dx2, dux, k2, lin2, mu, f(3), wq, wl
+    integer :: z, k, e, ia, ib, node
+    do z = 1, n
+      if (.not. (volume(z) > 0.0_rk)) cycle
+      wq = edge_q(1, z)
+      wl = wq
+      if (.not. linear_limited) wl = 1.0_rk
+      if (.not. (wl > 0.0_rk)) cycle
+      do k = 1, 8
+        node = zone_node(k, z)
+        xz(:, k) = x(:, node)
+        vz(:, k) = v(:, node)
+      end do
+      centre = 0.125_rk * (xz(:, 1) + xz(:, 2) + xz(:, 3) + xz(:, 4) + xz(:, 5) + xz(:, 6) &
+          + xz(:, 7) + xz(:, 8))
+      do k = 1, 6
+        face(:, k) = 0.25_rk * (xz(:, EDGE_FACE_NODE(1, k)) + xz(:, EDGE_FACE_NODE(2, k)) &
+            + xz(:, EDGE_FACE_NODE(3, k)) + xz(:, EDGE_FACE_NODE(4, k)))
+      end do
+      k2 = q_quadratic * edge_q(2, z)
+      lin2 = (q_linear * sound_speed(z))**2
+      do e = 1, 12
+        ia = EDGE_NODE(1, e)
+        ib = EDGE_NODE(2, e)
+        dx = xz(:, ib) - xz(:, ia)
+        du = vz(:, ib) - vz(:, ia)
+        dux = du(1) * dx(1) + du(2) * dx(2) + du(3) * dx(3)
+        if (.not. (dux < 0.0_rk)) cycle
+        dx2 = dx(1)**2 + dx(2)**2 + dx(3)**2
+        ! Median-mesh surface of the edge: area vector 1/2 (centre - mid) x
+        ! (face2 - face1) of the quadrilateral (its diagonals' cross product).
+        mid = 0.5_rk * (xz(:, ia) + xz(:, ib))
+        r = centre - mid
+        s = face(:, EDGE_FACE(2, e)) - face(:, EDGE_FACE(1, e))
+        area(1) = r(2) * s(3) - r(3) * s(2)
+        area(2) = r(3) * s(1) - r(1) * s(3)
+        area(3) = r(1) * s(2) - r(2) * s(1)
+        du2 = du(1)**2 + du(2)**2 + du(3)**2
+        mu = density(z) * (wq * k2 * sqrt(du2) + sqrt(wq * wq * k2 * k2 * du2 + wl * wl * lin2)) &
+            * 0.5_rk * &
+            abs(area(1) * dx(1) + area(2) * dx(2) + area(3) * dx(3)) / sqrt(dx2)
+        f = mu * du
+        force(:, ia, z) = force(:, ia, z) + f
+        force(:, ib, z) = force(:, ib, z) - f
+      end do
+    end do
+  end subroutine zone_edge_forces
 
 end module hydro_kernels

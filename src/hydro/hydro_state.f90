@@ -7,6 +7,8 @@ module hydro_state
   integer, parameter, public :: HOURGLASS_NONE = 0
   integer, parameter, public :: HOURGLASS_VISCOUS = 1
   integer, parameter, public :: HOURGLASS_STIFFNESS = 2
+  integer, parameter, public :: VISCOSITY_SCALAR = 1 !< zone-centred q (von Neumann-Richtmyer)
+  integer, parameter, public :: VISCOSITY_EDGE = 2 !< edge-centred q (Caramana-Shashkov-Whalen)
 
   !> Numerical options of the hydro scheme (deck group &control / &hydro).
   type, public :: hydro_options_t
@@ -20,6 +22,7 @@ module hydro_state
     real(rk) :: q_quadratic = 2.0_rk / 3.0_rk !< quadratic viscosity coefficient C2
     logical :: q_limiter = .true. !< monotonic limiter of the viscosity
     logical :: q_linear_limited = .true. !< the limiter acts on the linear term too
+    integer :: viscosity = VISCOSITY_SCALAR !< VISCOSITY_* form of the artificial viscosity
     integer :: hourglass = HOURGLASS_VISCOUS !< HOURGLASS_* type
     real(rk) :: hourglass_coefficient = 0.1_rk !< Flanagan-Belytschko coefficient
   end type hydro_options_t
@@ -44,6 +47,9 @@ module hydro_state
     real(rk), allocatable :: zone_length(:) !< characteristic length
     real(rk), allocatable :: zone_divergence(:) !< div v = (dV/dt)/V
     real(rk), allocatable :: zone_gradient(:, :) !< (3, nzone) stretching rates (limiter)
+    !> edge viscosity only, (2, nzone): 1 - psi, psi the zone's limiter (1), and
+    !> the zone's strong-shock factor (gamma + 1)/4 (2)
+    real(rk), allocatable :: zone_edge_q(:, :)
     real(rk), allocatable :: zone_bmatrix(:, :, :) !< (3, 8, nzone) dV/dx at x^n
     real(rk), allocatable :: zone_hourglass(:, :, :) !< (3, 4, nzone) stiffness state
     real(rk), allocatable :: zone_hourglass_new(:, :, :) !< its update during a cycle
