@@ -93,7 +93,11 @@ contains
         sb = p%segment_pairs(2, m)
         na = ga%quad_normal(:, sa)
         nb = gb%quad_normal(:, sb)
-        if (.not. dot_product(na, nb) < FACING) cycle
+        ! Facing: between two surfaces any segments that face each other
+        ! at all (a convex edge's side faces meet a dented plate nearly at
+        ! right angles, docs/contact.md 9.3); in self-contact the FACING
+        ! cut, so that neighbours across a concave corner are not paired.
+        if (.not. dot_product(na, nb) < merge(FACING, 0.0_rk, p%self)) cycle
         ! Hitting side: surface a, or in self-contact the lower segment id.
         a_hits = .true.
         if (p%self) a_hits = p%a%segment_id(sa) < p%b%segment_id(sb)

@@ -38,7 +38,7 @@ module contact_state
   integer, parameter, public :: DIAG_FORCE = 9, DIAG_WORK = 12, DIAG_AUDIT = 13
 
   !> Facets facing each other: n_a . n_b below this (DAM facet pairs, DLM
-  !> segment pairs).
+  !> segment pairs in self-contact; DLM between two surfaces: below 0).
   real(rk), parameter, public :: FACING = -0.2_rk
   !> Overlaps smaller than this fraction of the smaller facet's area are
   !> ignored: slivers between facets of neighbouring nodes that coincide in
