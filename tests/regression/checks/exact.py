@@ -13,6 +13,11 @@ impact3d_tools.compare (its summary's `key = value` values).
       2 local zone widths of exact
   window --deck D --np N --axis x --range A B --target 4 --tol 0.05
       zone densities with centroid in [A, B] all within tol (relative) of target
+  versus --deck D --reference R --np N --problem P --closer KEY ... --higher KEY ...
+      run both decks; the deck's |KEY| below the reference's (--closer) or
+      its KEY above the reference's (--higher): a claim that one option
+      beats another on the same problem and mesh, with no bound taken from
+      a measurement
 """
 import os
 
@@ -21,7 +26,7 @@ import numpy as np
 from impact3d_tools import dump
 
 from checks.common import (add_bounds, add_problem, check, check_bounds, compare_values,
-                           final_dump, run, run_in)
+                           final_dump, run, run_in, run_pair)
 
 
 def cmd_compare(args):
@@ -110,6 +115,25 @@ def cmd_interface(args):
     check_bounds(values, args)
 
 
+def cmd_versus(args):
+    ref_dir = os.path.join(args.workdir, "reference")
+    run_dir = os.path.join(args.workdir, "run")
+    ok, _ = run_pair(args, ref_dir, run_dir)
+    if not ok:
+        return
+    rc_r, ref, err_r = compare_values(final_dump(ref_dir), args.problem, args.compare_args)
+    rc, got, err = compare_values(final_dump(run_dir), args.problem, args.compare_args)
+    check("compare.py runs on both", rc == 0 and rc_r == 0, (err + err_r)[-2000:])
+    check_bounds(got, args, reference=ref)
+    nan = float("nan")
+    for k in args.closer or []:
+        a, b = got.get(k, nan), ref.get(k, nan)
+        check("|%s| = %.4e < the reference's %.4e" % (k, abs(a), abs(b)), abs(a) < abs(b))
+    for k in args.higher or []:
+        a, b = got.get(k, nan), ref.get(k, nan)
+        check("%s = %.4e > the reference's %.4e" % (k, a, b), a > b)
+
+
 def register(sub, common):
     p = sub.add_parser("compare", parents=[common], help="summary values against exact")
     add_problem(p)
@@ -133,3 +157,12 @@ def register(sub, common):
     p.add_argument("--target", type=float, required=True)
     p.add_argument("--tol", type=float, default=1e-12)
     p.set_defaults(func=cmd_window)
+    p = sub.add_parser("versus", parents=[common], help="one option beats another")
+    add_problem(p)
+    add_bounds(p)
+    p.add_argument("--reference", required=True, help="the deck to beat")
+    p.add_argument("--closer", action="append", metavar="KEY",
+                   help="the deck's |KEY| is below the reference's")
+    p.add_argument("--higher", action="append", metavar="KEY",
+                   help="the deck's KEY is above the reference's")
+    p.set_defaults(func=cmd_versus)
