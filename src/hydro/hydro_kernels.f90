@@ -308,38 +308,55 @@ contains
     logical, intent(in) :: linear_limited !< limit the linear term too
     real(rk), intent(in) :: density(:), sound_speed(:), length(:), divergence(:)
     real(rk), intent(inout) :: q(:)
-    integer :: z, d
-    real(rk) :: g, rm, rp, phi, du, phi_linear, wsum
+    integer :: z
+    real(rk) :: phi, du, phi_linear
     do z = 1, n
       if (divergence(z) >= 0.0_rk) then
         q(z) = 0.0_rk
         cycle
       end if
-      phi = 0.0_rk
-      wsum = 0.0_rk
-      do d = 1, 3
-        g = gradient(d, z)
-        if (g >= 0.0_rk) cycle
-        rm = ratio(FACE_MINUS(d))
-        rp = ratio(FACE_PLUS(d))
-        phi = phi - g * max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk))
-        wsum = wsum - g
-      end do
-      if (wsum > 0.0_rk) then
-        phi = phi / wsum
-      else
-        phi = 1.0_rk
-      end if
+      phi = zone_limiter(z, neighbour, neighbour_face, symmetric, gradient)
       du = length(z) * divergence(z)
       phi_linear = 0.0_rk
       if (linear_limited) phi_linear = phi
       q(z) = density(z) * (q_quadratic * (du * (1.0_rk - phi))**2 &
           - q_linear * sound_speed(z) * du * (1.0_rk - phi_linear))
     end do
+  end subroutine zone_limited_viscosity
+
+  !> The limiter phi of zone z (zone_limited_viscosity's notes): the
+  !> compression-weighted mean over the logical directions d in compression
+  !> (g_d < 0) of phi_d = max(0, min((r- + r+)/2, 2 r-, 2 r+, 1)), r+- the
+  !> face neighbours' stretching rates along d over the zone's own (a missing
+  !> neighbour: r = 1 on a symmetry plane, 0 elsewhere); 1 (no viscosity)
+  !> where the zone is compressed along no direction.
+  pure real(rk) function zone_limiter(z, neighbour, neighbour_face, symmetric, gradient) &
+      result(phi)
+    integer, intent(in) :: z
+    integer, intent(in) :: neighbour(:, :), neighbour_face(:, :) !< (6, nzone)
+    logical, intent(in) :: symmetric(:, :) !< (6, nzone) face on a symmetry plane
+    real(rk), intent(in) :: gradient(:, :) !< (3, nzone) stretching rates
+    integer :: d
+    real(rk) :: g, rm, rp, wsum
+    phi = 0.0_rk
+    wsum = 0.0_rk
+    do d = 1, 3
+      g = gradient(d, z)
+      if (g >= 0.0_rk) cycle
+      rm = ratio(FACE_MINUS(d))
+      rp = ratio(FACE_PLUS(d))
+      phi = phi - g * max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk))
+      wsum = wsum - g
+    end do
+    if (wsum > 0.0_rk) then
+      phi = phi / wsum
+    else
+      phi = 1.0_rk
+    end if
 
   contains
 
-    real(rk) function ratio(face)
+    pure real(rk) function ratio(face)
       integer, intent(in) :: face
       integer :: nb
       nb = neighbour(face, z)
@@ -352,7 +369,7 @@ contains
       end if
     end function ratio
 
-  end subroutine zone_limited_viscosity
+  end function zone_limiter
 
   !> Limiter of the edge viscosity, zones 1..n: edge_q(1, z) = 1 - phi with
   !> phi the zone's limiter of zone_limited_viscosity (the compression-weighted
@@ -370,45 +387,14 @@ contains
     real(rk), intent(in) :: gradient(:, :) !< (3, nzone) stretching rates
     logical, intent(in) :: limited
     real(rk), intent(inout) :: edge_q(:, :) !< (2, nzone)
-    integer :: z, d
-    real(rk) :: g, rm, rp, phi, wsum
+    integer :: z
     do z = 1, n
-      if (.not. limited) then
-        edge_q(1, z) = 1.0_rk
-        cycle
-      end if
-      phi = 0.0_rk
-      wsum = 0.0_rk
-      do d = 1, 3
-        g = gradient(d, z)
-        if (g >= 0.0_rk) cycle
-        rm = ratio(FACE_MINUS(d))
-        rp = ratio(FACE_PLUS(d))
-        phi = phi - g * max(0.0_rk, min(0.5_rk * (rm + rp), 2.0_rk * rm, 2.0_rk * rp, 1.0_rk))
-        wsum = wsum - g
-      end do
-      if (wsum > 0.0_rk) then
-        edge_q(1, z) = 1.0_rk - phi / wsum
+      if (limited) then
+        edge_q(1, z) = 1.0_rk - zone_limiter(z, neighbour, neighbour_face, symmetric, gradient)
       else
-        edge_q(1, z) = 0.0_rk
+        edge_q(1, z) = 1.0_rk
       end if
     end do
-
-  contains
-
-    real(rk) function ratio(face)
-      integer, intent(in) :: face
-      integer :: nb
-      nb = neighbour(face, z)
-      if (nb > 0) then
-        ratio = gradient(FACE_DIRECTION(neighbour_face(face, z)), nb) / g
-      else if (symmetric(face, z)) then
-        ratio = SYMMETRY_RATIO
-      else
-        ratio = 0.0_rk
-      end if
-    end function ratio
-
   end subroutine zone_edge_limiter
 
   !> Edge-centred artificial viscosity (E. J. Caramana, M. J. Shashkov and
