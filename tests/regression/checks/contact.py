@@ -8,6 +8,7 @@ section C).
   patch --deck D --range A B --target S --tol T
       the stress a planar wave carries through non-matching meshes is uniform
   impact --deck D --pair NAME --tol T --max-pen P [--momentum-tol M --momentum-axes z]
+         [--audit] [--max-audit-a A] [--max-work W]
       two bodies in contact: energy balance, penetration, momentum; final
       block velocities reported
   slide --deck D --v0 V --friction MU --pressure P --area A --tol T [--pair NAME]
@@ -140,16 +141,36 @@ def cmd_impact(args):
     --tol, the largest penetration stays below --max-pen, the total momentum
     stays within --momentum-tol of its initial value (relative to its norm;
     give it for DLM, exact); reports the contact work and the final
-    mass-weighted velocity of each block."""
+    mass-weighted velocity of each block. With --audit: at every audit no
+    node of either surface beyond its tolerance and none unheld; with
+    --max-audit-a: the deepest node of surface a by the audit at most that;
+    with --max-work: the interface's contact work at most that fraction of
+    the initial energy at every row."""
     wd, out = run_in(args, "impact")
     if wd is None:
         return
     header, rows = read_history(wd)
+    col = lambda name: rows[:, header.index(args.pair + "_" + name)]
     e0 = abs(rows[0, header.index("total_energy")])
     worst = np.abs(rows[:, header.index("energy_error")]).max()
     check("energy balance |error| %.2e <= %.1e" % (worst, args.tol), worst <= args.tol)
-    pen = rows[:, header.index(args.pair + "_pen_max")].max()
-    check("largest penetration %.3e <= %.3e" % (pen, args.max_pen), pen <= args.max_pen)
+    pen = col("pen_max").max()
+    if np.isfinite(args.max_pen):
+        check("largest penetration %.3e <= %.3e" % (pen, args.max_pen), pen <= args.max_pen)
+    else:
+        print("largest penetration %.3e (enforced pairs)" % pen)
+    if args.audit:
+        for name in ("audit_count_a", "audit_count_b", "unheld"):
+            check("%s_%s = 0 at every audit (max %g)" % (args.pair, name, col(name).max()),
+                  np.all(col(name) == 0))
+    if args.max_audit_a is not None:
+        deepest = col("audit_pen_max_a").max()
+        check("deepest node of surface a by the audit %.3e <= %.3e" % (deepest, args.max_audit_a),
+              deepest <= args.max_audit_a)
+    if args.max_work is not None:
+        work = col("work").max() / e0
+        check("contact work <= %.1e E0 at every row (max %.2e E0)" % (args.max_work, work),
+              work <= args.max_work)
     p = rows[:, [header.index("momentum_" + c) for c in args.momentum_axes]]
     drift = np.linalg.norm(p - p[0], axis=1).max() / max(np.linalg.norm(p[0]), 1e-300)
     if args.momentum_tol > 0.0:
@@ -283,6 +304,12 @@ def register(sub, common):
     p.add_argument("--pair", default="mid", help="contact pair name")
     p.add_argument("--tol", type=float, default=1e-12, help="energy balance")
     p.add_argument("--max-pen", type=float, default=float("inf"))
+    p.add_argument("--audit", action="store_true",
+                   help="no node beyond its tolerance and none unheld at any audit")
+    p.add_argument("--max-audit-a", type=float, default=None,
+                   help="bound on the audit's deepest node of surface a")
+    p.add_argument("--max-work", type=float, default=None,
+                   help="bound on the interface's contact work / initial energy")
     p.add_argument("--momentum-tol", type=float, default=0.0)
     p.add_argument("--momentum-axes", default="xyz",
                    help="the momentum components no boundary acts on (a symmetry "
