@@ -43,8 +43,8 @@ module contact_dlm
       triangle_overlap_2d, plane_offset, covered, OVERLAP_VERTICES, FACET_CORNER, &
       SEGMENT_FACET_COUNT
   use contact_records, only: records_t, add_record
-  use contact_state, only: FORM_VELOCITY, FACING, AREA_TOLERANCE, interface_t, contact_t, &
-      geometry_update
+  use contact_state, only: FORM_VELOCITY, FACING, FACING_SURFACES, AREA_TOLERANCE, &
+      interface_t, contact_t, geometry_update
   use contact_kernels, only: dlm_pair_force, dlm_pair_friction
   implicit none
   private
@@ -93,11 +93,7 @@ contains
         sb = p%segment_pairs(2, m)
         na = ga%quad_normal(:, sa)
         nb = gb%quad_normal(:, sb)
-        ! Facing: between two surfaces any segments that face each other
-        ! at all (a convex edge's side faces meet a dented plate nearly at
-        ! right angles, docs/contact.md 9.3); in self-contact the FACING
-        ! cut, so that neighbours across a concave corner are not paired.
-        if (.not. dot_product(na, nb) < merge(FACING, 0.0_rk, p%self)) cycle
+        if (.not. dot_product(na, nb) < merge(FACING, FACING_SURFACES, p%self)) cycle
         ! Hitting side: surface a, or in self-contact the lower segment id.
         a_hits = .true.
         if (p%self) a_hits = p%a%segment_id(sa) < p%b%segment_id(sb)

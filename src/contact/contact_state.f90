@@ -38,8 +38,13 @@ module contact_state
   integer, parameter, public :: DIAG_FORCE = 9, DIAG_WORK = 12, DIAG_AUDIT = 13
 
   !> Facets facing each other: n_a . n_b below this (DAM facet pairs, DLM
-  !> segment pairs in self-contact; DLM between two surfaces: below 0).
+  !> segment pairs in self-contact, where it keeps neighbours across a
+  !> concave corner of one surface apart).
   real(rk), parameter, public :: FACING = -0.2_rk
+  !> DLM segment pairs between two surfaces: any that face each other (a
+  !> convex edge's side faces meet a dented plate nearly at right angles,
+  !> docs/contact.md 9.3).
+  real(rk), parameter, public :: FACING_SURFACES = 0.0_rk
   !> Overlaps smaller than this fraction of the smaller facet's area are
   !> ignored: slivers between facets of neighbouring nodes that coincide in
   !> one projection but not in the slightly tilted common plane of another
