@@ -13,7 +13,7 @@ module app_setup
   use mesh_local, only: mesh_t, mesh_build_local
   use contact_surface, only: set_names_of
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS, HOURGLASS_NONE
-  use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain
+  use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain, boundary_prescribed
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
   use contact_enforce, only: contact_t, contact_setup
@@ -69,7 +69,7 @@ contains
     if (status%ok()) call probe_setup(config%probes, global, mesh, config%output%directory, &
         config%units, probes, status)
     if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
-        status, offsets, bc%symmetry_planes)
+        status, offsets, bc%symmetry_planes, boundary_prescribed(bc, size(state%node_mass)))
     if (.not. status%ok()) return
     call global%free()
     allocate(state%contact_pair_work(ct%npair), source=0.0_rk)

@@ -450,6 +450,7 @@ contains
       if (ct%pairs(k)%method /= METHOD_DAM) cycle
       do i = 1, ct%nown
         if (.not. (has(i, k) .or. touched(i, k))) cycle
+        if (ct%all_rigid(ct%own_contact(i))) cycle
         has(i, k) = .true.
         l = ct%own_local(i)
         mass = ct%all_mass(ct%own_contact(i))

@@ -50,7 +50,7 @@ module contact_deck
       key_t("friction", "r", "0", "", &
       "Coulomb friction coefficient mu >= 0 (finite), both methods"), &
       key_t("symmetric", "l", ".false.", "", &
-      "DAM: a second pass with master and slave swapped")]
+      "DAM: a second pass with master and slave swapped (self-contact: the other side)")]
 
 contains
 
@@ -185,9 +185,6 @@ contains
     pair%friction = friction
     if (symmetric_given .and. to_lower(method) == 'dlm') call status%add(trim(where)// &
         ': symmetric: only for DAM (DLM is symmetric: every facet pair acts on both sides)')
-    if (symmetric_given .and. (surface_a == surface_b .or. len_trim(surface_b) == 0)) &
-        call status%add(trim(where)//': symmetric: not for self-contact (every node of '// &
-        'the surface is a slave already)')
     pair%symmetric = symmetric .and. to_lower(method) == 'dam'
   end subroutine read_contact
 

@@ -52,7 +52,7 @@ module contact_enforce
   use contact_records, only: records_t, take, send_records, sum_records
   use contact_search, only: find_key
   use contact_state, only: METHOD_DAM, METHOD_DLM, FORM_COORDINATE, FORM_VELOCITY, &
-      FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
+      RIGID_MASS_FACTOR, FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
       surface_geometry_t, selection_t, contact_t, initial_offsets_t, step_sums_t
   use contact_audit, only: surface_sagitta, audit_reach
   use contact_dlm, only: dlm_step, dlm_cover, DLM_DEFAULT_RECOVERY
@@ -71,7 +71,7 @@ contains
 
   !> Build the contact surfaces in contact-index space, the owned-node map and
   !> the nodal masses. Problems go to status (group, key, reason).
-  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets, planes)
+  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets, planes, rigid)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
@@ -82,6 +82,8 @@ contains
     type(initial_offsets_t), intent(in), optional :: offsets(:)
     !> (4, n) the deck's symmetry planes (unit normal, offset) for the audit
     real(rk), intent(in), optional :: planes(:, :)
+    !> (nnode local) nodes whose motion is prescribed: rigid for the contact
+    logical, intent(in), optional :: rigid(:)
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
     integer(i8), allocatable :: all(:)
     real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
@@ -95,8 +97,7 @@ contains
       allocate(ct%planes(4, 0))
     end if
     ct%ndeck = size(specs)
-    ct%npair = ct%ndeck + count(specs%symmetric .and. specs%method == 'dam' .and. &
-        specs%surface_a /= specs%surface_b)
+    ct%npair = ct%ndeck + count(specs%symmetric .and. specs%method == 'dam')
     allocate(ct%pairs(ct%npair), raw_a(ct%npair), raw_b(ct%npair))
     if (ct%npair == 0) return
     m = ct%ndeck
@@ -131,7 +132,7 @@ contains
         end if
         call surface_build(global, set_names_of(slave_set), raw_a(k), status)
         call surface_build(global, set_names_of(master_set), raw_b(k), status)
-        if (p%method == METHOD_DAM .and. specs(k)%symmetric .and. .not. p%self) then
+        if (p%method == METHOD_DAM .and. specs(k)%symmetric) then
           ! The reverse pass: the same interface with the sides swapped.
           m = m + 1
           p%mirror = m
@@ -194,18 +195,27 @@ contains
     do i = 1, ct%nown
       ct%own_of(ct%own_contact(i)) = i
     end do
-    allocate(packed(2, ct%nall))
+    allocate(packed(3, ct%nall))
     packed = 0.0_rk
     do i = 1, ct%nown
       packed(1, ct%own_contact(i)) = node_mass(ct%own_local(i))
       packed(2, ct%own_contact(i)) = real(par_rank(), rk)
+      if (present(rigid)) then
+        if (rigid(ct%own_local(i))) packed(3, ct%own_contact(i)) = 1.0_rk
+      end if
     end do
-    allocate(flat(2 * ct%nall))
-    flat = reshape(packed, [2 * ct%nall])
+    allocate(flat(3 * ct%nall))
+    flat = reshape(packed, [3 * ct%nall])
     call par_sum_array(flat)
-    packed = reshape(flat, [2, ct%nall])
+    packed = reshape(flat, [3, ct%nall])
     ct%all_mass = packed(1, :)
     ct%all_owner = nint(packed(2, :))
+    ! A node whose motion is prescribed is rigid for the contact: its mass is
+    ! scaled by RIGID_MASS_FACTOR, so every exchange and multiplier moves the
+    ! other side only, and it takes no contact force (the constraint's
+    ! reaction is the boundary's work).
+    ct%all_rigid = packed(3, :) > 0.5_rk
+    where (ct%all_rigid) ct%all_mass = RIGID_MASS_FACTOR * ct%all_mass
     allocate(ct%fc(3, ct%nown))
     ct%fc = 0.0_rk
     call segment_homes(ct, mesh)
@@ -412,6 +422,11 @@ contains
         call dam_forces(ct, first, last, putback, v_old, force, dt, vmatch, touched, fck, has)
       end if
       do i = 1, ct%nown
+        if (ct%all_rigid(ct%own_contact(i))) then
+          ! Prescribed motion: the boundary holds the node (contact_setup).
+          has(i, first:last) = .false.
+          cycle
+        end if
         fsum = 0.0_rk
         do k = first, last
           if (has(i, k)) fsum = fsum + fck(:, i, k)

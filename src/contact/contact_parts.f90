@@ -438,7 +438,7 @@ contains
         else
           call bucket_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
               keys(k)%v, cands(k)%v)
-          if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs)
+          if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs, p%mirror_of > 0)
         end if
       end associate
     end do

@@ -51,6 +51,14 @@ module contact_state
   !> segment pair (relative size tilt x penetration / zone, ~1e-12 on the
   !> mirror test). They carry less than this share of a node's force.
   real(rk), parameter, public :: AREA_TOLERANCE = 1.0e-8_rk
+  !> A node whose motion is prescribed (a velocity boundary: a driven platen,
+  !> a welded end) is rigid for the contact: its mass is scaled by this
+  !> factor, so a merge or a multiplier changes its velocity by 1e-12 of the
+  !> other side's change and the other side takes the whole correction.
+  !> (Without it the contact slows the driven node, the boundary restores it,
+  !> and the node sinks into what it pushes: the folding tube's driven rim
+  !> went a wall thickness into the tube's own fold.)
+  real(rk), parameter, public :: RIGID_MASS_FACTOR = 1.0e12_rk
 
   !> One RCB part's sums of a stage for an interface (reduced over the
   !> parts into the diagnostics).
@@ -184,7 +192,9 @@ module contact_state
     ! Every contact node (static, on every rank).
     integer :: nall = 0 !< contact nodes of all surfaces
     integer(i8), allocatable :: all_gid(:) !< (nall) global ids, ascending
-    real(rk), allocatable :: all_mass(:) !< (nall) nodal masses (fixed)
+    !> (nall) nodal masses (fixed), a rigid node's scaled by RIGID_MASS_FACTOR
+    real(rk), allocatable :: all_mass(:)
+    logical, allocatable :: all_rigid(:) !< (nall) motion prescribed (a velocity boundary)
     integer, allocatable :: all_owner(:) !< (nall) rank owning the node in the mesh
     ! Owned contact nodes of this rank.
     integer :: nown = 0

@@ -340,10 +340,15 @@ contains
   !> DAM self-contact: a node is the slave of a segment only from the side
   !> with the lower segment ids (its lowest segment id below the segment's),
   !> so each pair of facing sides is matched once, as two surfaces would be
-  !> (both sides as slaves would exchange everything twice).
-  subroutine keep_lower_side(surf, pairs)
+  !> (both sides as slaves would exchange everything twice). With
+  !> symmetric = .true. the reverse pass keeps the other side (upper): the
+  !> nodes of the higher-id side, which the first pass matched only as
+  !> masters, are then slaves of the lower-id side's segments.
+  subroutine keep_lower_side(surf, pairs, upper)
     type(contact_surface_t), intent(in) :: surf
     integer, allocatable, intent(inout) :: pairs(:, :) !< (2, n) node, segment
+    !> keep the other side instead (the reverse pass of symmetric = .true.)
+    logical, intent(in) :: upper
     integer(i8) :: lowest
     integer :: m, kept, k
     kept = 0
@@ -351,7 +356,7 @@ contains
       k = surface_node_index(surf, int(pairs(1, m), ik))
       lowest = minval(surf%segment_id(surf%node_segments(surf%node_start(k): &
           surf%node_start(k + 1) - 1)))
-      if (.not. lowest < surf%segment_id(pairs(2, m))) cycle
+      if ((lowest < surf%segment_id(pairs(2, m))) .eqv. upper) cycle
       kept = kept + 1
       pairs(:, kept) = pairs(:, m)
     end do

@@ -12,6 +12,7 @@ module hydro_boundary
   implicit none
   private
   public :: boundary_setup, boundary_constrain, boundary_pressure_forces, boundary_wall
+  public :: boundary_prescribed
 
   integer, parameter, public :: BC_FREE = 0, BC_SYMMETRY = 1, BC_VELOCITY = 2, BC_PRESSURE = 3
   integer, parameter, public :: BC_WALL = 4
@@ -443,6 +444,20 @@ contains
     end do
     s = 0
   end function set_index
+
+  !> Local nodes whose motion is prescribed in every direction (a velocity
+  !> set: no free direction left by the constraint), for the contact, which
+  !> treats them as rigid.
+  function boundary_prescribed(bc, nnode) result(fixed)
+    type(boundary_t), intent(in) :: bc
+    integer, intent(in) :: nnode !< local nodes
+    logical :: fixed(nnode)
+    integer :: k
+    fixed = .false.
+    do k = 1, bc%nconstrained
+      fixed(bc%node(k)) = all(bc%projector(:, :, k) == 0.0_rk)
+    end do
+  end function boundary_prescribed
 
   !> Impose the kinematic constraints on a velocity (or acceleration, with
   !> with_value = .false.) field of the owned nodes.

@@ -8,7 +8,7 @@ section C).
   patch --deck D --range A B --target S --tol T
       the stress a planar wave carries through non-matching meshes is uniform
   impact --deck D --pair NAME --tol T --max-pen P [--momentum-tol M --momentum-axes z]
-         [--audit] [--max-audit-a A] [--max-work W]
+         [--audit] [--max-audit-a A] [--max-audit-b B] [--max-work W]
       two bodies in contact: energy balance, penetration, momentum; final
       block velocities reported
   slide --deck D --v0 V --friction MU --pressure P --area A --tol T [--pair NAME]
@@ -143,7 +143,8 @@ def cmd_impact(args):
     give it for DLM, exact); reports the contact work and the final
     mass-weighted velocity of each block. With --audit: at every audit no
     node of either surface beyond its tolerance and none unheld; with
-    --max-audit-a: the deepest node of surface a by the audit at most that;
+    --max-audit-a / --max-audit-b: the deepest node of surface a / b by the
+    audit at most that;
     with --max-work: the interface's contact work at most that fraction of
     the initial energy at every row."""
     wd, out = run_in(args, "impact")
@@ -163,10 +164,12 @@ def cmd_impact(args):
         for name in ("audit_count_a", "audit_count_b", "unheld"):
             check("%s_%s = 0 at every audit (max %g)" % (args.pair, name, col(name).max()),
                   np.all(col(name) == 0))
-    if args.max_audit_a is not None:
-        deepest = col("audit_pen_max_a").max()
-        check("deepest node of surface a by the audit %.3e <= %.3e" % (deepest, args.max_audit_a),
-              deepest <= args.max_audit_a)
+    for side, bound in (("a", args.max_audit_a), ("b", args.max_audit_b)):
+        if bound is None:
+            continue
+        deepest = col("audit_pen_max_" + side).max()
+        check("deepest node of surface %s by the audit %.3e <= %.3e" % (side, deepest, bound),
+              deepest <= bound)
     if args.max_work is not None:
         work = col("work").max() / e0
         check("contact work <= %.1e E0 at every row (max %.2e E0)" % (args.max_work, work),
@@ -308,6 +311,8 @@ def register(sub, common):
                    help="no node beyond its tolerance and none unheld at any audit")
     p.add_argument("--max-audit-a", type=float, default=None,
                    help="bound on the audit's deepest node of surface a")
+    p.add_argument("--max-audit-b", type=float, default=None,
+                   help="bound on the audit's deepest node of surface b")
     p.add_argument("--max-work", type=float, default=None,
                    help="bound on the interface's contact work / initial energy")
     p.add_argument("--momentum-tol", type=float, default=0.0)

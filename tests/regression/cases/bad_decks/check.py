@@ -541,15 +541,11 @@ def build_cases():
                   sub("set = 'xmax', type = 'symmetry'",
                       "set = 'xmax', type = 'symmetry', friction = 0.2"),
                   ["&boundary(2): friction: only for type = 'wall'"]))
-    # DAM's second pass (symmetric): DLM is symmetric already, and in
-    # self-contact every node is a slave.
+    # DAM's second pass (symmetric): DLM is symmetric already.
     c.append(Case("contact_symmetric_dlm",
                   append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
                          "symmetric = .true. /\n"),
                   ["&contact(1): symmetric: only for DAM"]))
-    c.append(Case("contact_symmetric_self",
-                  append("&contact surface_a = 'xmax', method = 'dam', symmetric = .false. /\n"),
-                  ["&contact(1): symmetric: not for self-contact"]))
     c.append(Case("contact_friction_negative",
                   append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dam', "
                          "friction = -0.5 /\n"),
