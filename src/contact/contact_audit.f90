@@ -28,7 +28,9 @@
 !> the feature faces it (the angle between its own area-weighted normal and
 !> N above 120 degrees, SELF_FACING): two folds of one surface meet face to
 !> face, while a stretch of surface curving away from the node, even as
-!> tightly as the crest of a fold, does not.
+!> tightly as the crest of a fold, does not. The rim of the excluded rings
+!> is a free edge for the sign test: a node off it sideways is beside the
+!> candidate surface (the apex of a fold closed to a V).
 !>
 !> Reach. Only segments whose box comes within `reach` of a node are
 !> candidates (a bucket grid); a node with none gets gap = +reach. A node
@@ -454,12 +456,39 @@ contains
         if (f == 5) vertex_node = target%segments(kk, s)
         call vertex_normal(vertex_node, n, free)
       end select
+      if (self .and. .not. free) free = excluded_rim(s, k, f)
       if (free .and. norm2(n) > 0.0_rk) then
         n = n / norm2(n)
         lateral = (p - best_q) - dot_product(p - best_q, n) * n
         applies = norm2(lateral) <= LATERAL_FRACTION * tsize(s)
       end if
     end subroutine pseudo_normal
+
+    !> Self-contact: whether feature f of triangle k of segment s lies on the
+    !> rim of the rings excluded around node i (a segment edge whose
+    !> neighbour across it is excluded, or a corner node of an excluded
+    !> segment). The candidate surface ends there as at a free edge: the
+    !> surface runs on into the node's own neighbourhood, which is not
+    !> judged, so a node off that rim sideways is beside it, not behind it
+    !> (the apex of a fold closed to a V lies beyond the rim of its own
+    !> flank's third ring and a few degrees behind that segment's plane).
+    logical function excluded_rim(s, k, f) result(rim)
+      integer, intent(in) :: s, k, f
+      integer :: t, vn, e, m
+      rim = .false.
+      select case (f)
+      case (1)
+        t = target%neighbours(k, s)
+        if (t > 0) rim = ring(t) == i
+      case (4, 5)
+        vn = target%segments(k, s)
+        if (f == 5) vn = target%segments(mod(k, 4) + 1, s)
+        m = surface_node_index(target, vn)
+        do e = target%node_start(m), target%node_start(m + 1) - 1
+          if (ring(target%node_segments(e)) == i) rim = .true.
+        end do
+      end select
+    end function excluded_rim
 
     !> The triangle of segment t whose segment edge runs from node a to b.
     integer function edge_triangle(t, a, b) result(kt)

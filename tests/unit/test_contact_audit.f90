@@ -18,6 +18,7 @@ program test_contact_audit
   call mirrored_hemisphere()
   call open_plate()
   call self_sheets()
+  call self_vfold()
   call sphere_sagitta()
   call check_summary()
 
@@ -396,6 +397,81 @@ contains
     call check_true('self: a half cylinder has no node inside itself', &
         all(gc(:tube%nnode) >= 0.0_rk))
   end subroutine self_sheets
+
+  !> Self-contact at a fold closed to a V (the folding tube's apex): one
+  !> strip whose profile runs out along one flank and back along the other,
+  !> 35 degrees apart, nodes bunched at the apex (0.012 from it) as a tight
+  !> fold's are, normals into the V: nothing is inside anything. With the
+  !> second flank turned 7.5 degrees past the first (crossing it), its nodes
+  !> beyond the crossing are inside. The tube's measured apex profile: its
+  !> apex node lies beyond the rim of the rings excluded around it and
+  !> 3e-3 behind the plane of the flank's third segment, beside it, not
+  !> behind it; the audit reported it 2.6e-2 inside before the rim rule
+  !> (this check fails without it).
+  subroutine self_vfold()
+    integer, parameter :: nx = 4, np = 11
+    real(rk), parameter :: along(0:5) = [0.0_rk, 0.012_rk, 0.04_rk, 0.09_rk, 0.15_rk, 0.21_rk]
+    real(rk) :: x(3, (nx + 1) * np), gap((nx + 1) * np), inward(3, (nx + 1) * np)
+    real(rk) :: ta, tb, dir(3)
+    integer(ik) :: seg(4, nx * (np - 1))
+    integer(i8) :: sid(nx * (np - 1))
+    integer :: hit((nx + 1) * np), i, j, s, pass, node
+    logical :: ok_open, ok_cross, ok_apex
+    !> The folding tube's outer surface through the apex of its upper fold
+    !> at t = 96 us (DAM), radial and axial offsets from the apex node of
+    !> the 11 nodes of one generatrix (problems/tube_fold).
+    real(rk), parameter :: apex_profile(2, np) = reshape([0.13093_rk, -0.07457_rk, &
+        0.07601_rk, -0.04922_rk, 0.04458_rk, -0.02807_rk, 0.02265_rk, -0.01243_rk, &
+        0.00867_rk, -0.00262_rk, 0.0_rk, 0.0_rk, 0.00924_rk, -0.00263_rk, &
+        0.03015_rk, -0.00778_rk, 0.05283_rk, -0.00818_rk, 0.08739_rk, -0.00390_rk, &
+        0.12920_rk, -0.00464_rk], [2, np])
+    type(contact_surface_t) :: v
+    ok_open = .true.
+    ok_cross = .true.
+    ok_apex = .true.
+    do pass = 1, 3
+      ta = -17.5_rk * PI / 180.0_rk
+      tb = 17.5_rk * PI / 180.0_rk
+      if (pass == 2) tb = -25.0_rk * PI / 180.0_rk
+      do j = 1, np
+        ! Profile node j: flank a's far end (j = 1) to the apex (j = 6) to
+        ! flank b's far end (j = 11).
+        if (pass == 3) then
+          dir = [0.0_rk, apex_profile(1, j), apex_profile(2, j)]
+        else if (j <= 6) then
+          dir = [0.0_rk, cos(ta), sin(ta)] * along(6 - j)
+        else
+          dir = [0.0_rk, cos(tb), sin(tb)] * along(j - 6)
+        end if
+        do i = 0, nx
+          x(:, 1 + i + (nx + 1) * (j - 1)) = dir + [0.1_rk * i, 0.0_rk, 0.0_rk]
+        end do
+      end do
+      s = 0
+      do j = 1, np - 1
+        do i = 0, nx - 1
+          s = s + 1
+          sid(s) = s
+          seg(:, s) = int([1 + i + (nx + 1) * (j - 1), 1 + i + (nx + 1) * j, &
+              2 + i + (nx + 1) * j, 2 + i + (nx + 1) * (j - 1)], ik)
+        end do
+      end do
+      call surface_from_segments(seg, sid, x, v)
+      call audit_gaps(x, v, v, .true., 0.5_rk, [(.true., i = 1, v%nnode)], gap, hit, inward)
+      do node = 1, v%nnode
+        j = (int(v%nodes(node)) - 1) / (nx + 1) + 1
+        if (pass == 1 .and. gap(node) < 0.0_rk) ok_open = .false.
+        if (pass == 3 .and. gap(node) < 0.0_rk) ok_apex = .false.
+        ! Flank b's nodes 0.15 and 0.21 from the apex are behind flank a
+        ! (sin 7.5 deg x 0.15 = 0.02 deep), well away from its rim.
+        if (pass == 2 .and. j >= 10 .and. .not. gap(node) < 0.0_rk) ok_cross = .false.
+      end do
+    end do
+    call check_true('self: a fold closed to a V has no node inside itself', ok_open)
+    call check_true('self: a flank turned past the other is inside it beyond the crossing', &
+        ok_cross)
+    call check_true('self: the folding tube''s closed fold has no node inside itself', ok_apex)
+  end subroutine self_vfold
 
   !> Sagitta on the sphere of radius 0.5: against the true bulge of the
   !> sphere over each segment's centre, R - |C - centre|. The estimate is
