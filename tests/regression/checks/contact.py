@@ -7,7 +7,7 @@ section C).
       two elastic bars meeting through a contact pair: see cmd_bars
   patch --deck D --range A B --target S --tol T
       the stress a planar wave carries through non-matching meshes is uniform
-  impact --deck D --pair NAME --tol T --max-pen P [--momentum-tol M --momentum-axes z]
+  impact --deck D --pair NAME [NAME ...] --tol T --max-pen P [--momentum-tol M --momentum-axes z]
          [--audit] [--max-audit-a A] [--max-audit-b B] [--max-work W]
       two bodies in contact: energy balance, penetration, momentum; final
       block velocities reported
@@ -41,7 +41,7 @@ def cmd_bars(args):
     header, rows = read_history(wd)
     t = rows[:, header.index("time")]
     dt = rows[:, header.index("dt")]
-    active = rows[:, header.index(args.pair + "_active")] > 0
+    active = rows[:, header.index(args.pair[0] + "_active")] > 0
     force = rows[:, header.index(args.pair + "_force")]
     pen = rows[:, header.index(args.pair + "_pen_max")]
     on = np.where(active)[0]
@@ -137,43 +137,48 @@ def cmd_patch(args):
 
 
 def cmd_impact(args):
-    """Two bodies through contact (pair --pair): the energy balance closes to
-    --tol, the largest penetration stays below --max-pen, the total momentum
-    stays within --momentum-tol of its initial value (relative to its norm;
-    give it for DLM, exact); reports the contact work and the final
-    mass-weighted velocity of each block. With --audit: at every audit no
-    node of either surface beyond its tolerance and none unheld; with
-    --max-audit-a / --max-audit-b: the deepest node of surface a / b by the
-    audit at most that;
-    with --max-work: the interface's contact work at most that fraction of
+    """Bodies in contact through one or more pairs (--pair NAME ...): the
+    energy balance closes to --tol; for each pair, the largest penetration
+    stays below --max-pen; the total momentum stays within --momentum-tol of
+    its initial value (relative to its norm; give it for DLM, exact);
+    reports the contact work and the final mass-weighted velocity of each
+    block. With --audit: at every audit no node of either surface of any
+    pair beyond its tolerance and none unheld; with --max-audit-a /
+    --max-audit-b: the deepest node of surface a / b by the audit at most
+    that; with --max-work: each pair's contact work at most that fraction of
     the initial energy at every row."""
     wd, out = run_in(args, "impact")
     if wd is None:
         return
     header, rows = read_history(wd)
-    col = lambda name: rows[:, header.index(args.pair + "_" + name)]
     e0 = abs(rows[0, header.index("total_energy")])
     worst = np.abs(rows[:, header.index("energy_error")]).max()
     check("energy balance |error| %.2e <= %.1e" % (worst, args.tol), worst <= args.tol)
-    pen = col("pen_max").max()
-    if np.isfinite(args.max_pen):
-        check("largest penetration %.3e <= %.3e" % (pen, args.max_pen), pen <= args.max_pen)
-    else:
-        print("largest penetration %.3e (enforced pairs)" % pen)
-    if args.audit:
-        for name in ("audit_count_a", "audit_count_b", "unheld"):
-            check("%s_%s = 0 at every audit (max %g)" % (args.pair, name, col(name).max()),
-                  np.all(col(name) == 0))
-    for side, bound in (("a", args.max_audit_a), ("b", args.max_audit_b)):
-        if bound is None:
-            continue
-        deepest = col("audit_pen_max_" + side).max()
-        check("deepest node of surface %s by the audit %.3e <= %.3e" % (side, deepest, bound),
-              deepest <= bound)
-    if args.max_work is not None:
-        work = col("work").max() / e0
-        check("contact work <= %.1e E0 at every row (max %.2e E0)" % (args.max_work, work),
-              work <= args.max_work)
+    for pair in args.pair:
+        col = lambda name: rows[:, header.index(pair + "_" + name)]
+        pen = col("pen_max").max()
+        if np.isfinite(args.max_pen):
+            check("%s: largest penetration %.3e <= %.3e" % (pair, pen, args.max_pen),
+                  pen <= args.max_pen)
+        else:
+            print("%s: largest penetration %.3e (enforced pairs)" % (pair, pen))
+        if args.audit:
+            for name in ("audit_count_a", "audit_count_b", "unheld"):
+                check("%s_%s = 0 at every audit (max %g)" % (pair, name, col(name).max()),
+                      np.all(col(name) == 0))
+        for side, bound in (("a", args.max_audit_a), ("b", args.max_audit_b)):
+            if bound is None:
+                continue
+            deepest = col("audit_pen_max_" + side).max()
+            check("%s: deepest node of surface %s by the audit %.3e <= %.3e"
+                  % (pair, side, deepest, bound), deepest <= bound)
+        if args.max_work is not None:
+            work = col("work").max() / e0
+            check("%s: contact work <= %.1e E0 at every row (max %.2e E0)"
+                  % (pair, args.max_work, work), work <= args.max_work)
+        else:
+            print("%s: contact work max %.3e, final %.3e of E0"
+                  % (pair, col("work").max() / e0, col("work")[-1] / e0))
     p = rows[:, [header.index("momentum_" + c) for c in args.momentum_axes]]
     drift = np.linalg.norm(p - p[0], axis=1).max() / max(np.linalg.norm(p[0]), 1e-300)
     if args.momentum_tol > 0.0:
@@ -182,7 +187,7 @@ def cmd_impact(args):
               drift <= args.momentum_tol)
     else:
         print("momentum drift %.2e of the initial momentum" % drift)
-    active = rows[:, header.index(args.pair + "_active")] > 0
+    active = rows[:, header.index(args.pair[0] + "_active")] > 0
     t = rows[:, header.index("time")]
     if active.any():
         print("contact from t = %.2f to t = %.2f" % (t[active][0], t[active][-1]))
@@ -304,7 +309,7 @@ def register(sub, common):
     p.add_argument("--tol", type=float, default=1e-12)
     p.set_defaults(func=cmd_patch)
     p = sub.add_parser("impact", parents=[common], help="two bodies impacting through contact")
-    p.add_argument("--pair", default="mid", help="contact pair name")
+    p.add_argument("--pair", nargs="+", default=["mid"], help="contact pair name(s)")
     p.add_argument("--tol", type=float, default=1e-12, help="energy balance")
     p.add_argument("--max-pen", type=float, default=float("inf"))
     p.add_argument("--audit", action="store_true",
