@@ -41,7 +41,7 @@ def cmd_bars(args):
     header, rows = read_history(wd)
     t = rows[:, header.index("time")]
     dt = rows[:, header.index("dt")]
-    active = rows[:, header.index(args.pair[0] + "_active")] > 0
+    active = rows[:, header.index(args.pair + "_active")] > 0
     force = rows[:, header.index(args.pair + "_force")]
     pen = rows[:, header.index(args.pair + "_pen_max")]
     on = np.where(active)[0]
