@@ -52,8 +52,8 @@ module contact_enforce
   use contact_records, only: records_t, take, send_records, sum_records
   use contact_search, only: find_key
   use contact_state, only: METHOD_DAM, METHOD_DLM, FORM_COORDINATE, FORM_VELOCITY, &
-      RIGID_MASS_FACTOR, FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, &
-      surface_geometry_t, selection_t, contact_t, initial_offsets_t, step_sums_t
+      RIGID_MASS_FACTOR, FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, &
+      contact_spec_t, surface_geometry_t, selection_t, contact_t, initial_offsets_t, step_sums_t
   use contact_audit, only: surface_sagitta, audit_reach
   use contact_dlm, only: dlm_step, dlm_cover, DLM_DEFAULT_RECOVERY
   use contact_dam, only: dam_exchange, dam_put_back, match_masters, dam_forces
