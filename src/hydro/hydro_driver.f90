@@ -61,10 +61,10 @@ contains
     integer, intent(out) :: bad
     integer :: z, m
     if (opt%q_limiter) then
-      call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_length, state%zone_divergence, bad, state%zone_gradient)
     else
-      call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_length, state%zone_divergence, bad)
     end if
     do z = 1, mesh%nzone
@@ -134,24 +134,24 @@ contains
     ! The corrector (stage_dt > 0) books the hourglass forces' work.
     if (stage_dt > 0.0_rk .and. allocated(state%zone_hourglass_work)) then
       if (opt%hourglass == HOURGLASS_STIFFNESS) then
-        call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+        call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
             state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
             state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
             state%zone_hourglass, state%zone_hourglass_new, state%corner_force, &
             state%zone_hourglass_work)
       else
-        call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+        call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
             state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
             state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
             unused, unused, state%corner_force, state%zone_hourglass_work)
       end if
     else if (opt%hourglass == HOURGLASS_STIFFNESS) then
-      call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
           state%zone_hourglass, state%zone_hourglass_new, state%corner_force)
     else
-      call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
           unused, unused, state%corner_force)
@@ -187,7 +187,7 @@ contains
     real(rk), intent(in) :: v(:, :)
     real(rk), intent(in) :: step
     integer :: z
-    call zone_work(mesh%nzone, mesh%zone_node, state%corner_force, v, state%zone_energy)
+    call zone_work(mesh%nzone, mesh%nnode, mesh%zone_node, state%corner_force, v, state%zone_energy)
     do z = 1, mesh%nzone
       state%zone_energy(z) = state%zone_energy_old(z) - step * state%zone_energy(z) / &
           state%zone_mass(z)

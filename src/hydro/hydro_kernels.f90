@@ -35,13 +35,15 @@ contains
   !> direction, g_d = dv_d . dx_d / |dx_d|^2 (dx_d, dv_d: differences between
   !> opposite face centres). bad returns the first zone with a non-positive or
   !> NaN volume (0 = none).
-  subroutine zone_kinematics(n, zone_node, x, v, volume, b, length, divergence, bad, gradient)
+  subroutine zone_kinematics(n, nnode, zone_node, x, v, volume, b, length, divergence, bad, &
+      gradient)
     integer, intent(in) :: n
-    integer, intent(in) :: zone_node(:, :)
-    real(rk), intent(in) :: x(:, :), v(:, :)
-    real(rk), intent(inout) :: volume(:), b(:, :, :), length(:), divergence(:)
+    integer, intent(in) :: nnode !< nodes the zones refer to (x, v)
+    integer, intent(in) :: zone_node(8, n)
+    real(rk), intent(in) :: x(3, nnode), v(3, nnode)
+    real(rk), intent(inout) :: volume(n), b(3, 8, n), length(n), divergence(n)
     integer, intent(out) :: bad
-    real(rk), intent(inout), optional :: gradient(:, :) !< (3, nzone)
+    real(rk), intent(inout), optional :: gradient(3, n)
     real(rk) :: xz(3, 8), vz(3, 8), vol, dvdt, dx(3, 3), dv(3, 3), l2
     integer :: z, k, d, node
     bad = 0
@@ -119,19 +121,20 @@ contains
   !> With hg_work present, each zone's hg_work grows by the energy its
   !> hourglass forces take from the velocities v over stage_dt:
   !> -stage_dt sum_k f_k . v_k = stage_dt sum_m Q_m . (gamma_m . v).
-  subroutine zone_corner_forces(n, zone_node, x, v, volume, b, pressure, q, density, &
+  subroutine zone_corner_forces(n, nnode, zone_node, x, v, volume, b, pressure, q, density, &
       sound_speed, hourglass, coefficient, stage_dt, hg, hg_new, force, hg_work)
     integer, intent(in) :: n
-    integer, intent(in) :: zone_node(:, :)
-    real(rk), intent(in) :: x(:, :), v(:, :), volume(:), b(:, :, :)
-    real(rk), intent(in) :: pressure(:), q(:), density(:), sound_speed(:)
+    integer, intent(in) :: nnode !< nodes the zones refer to (x, v)
+    integer, intent(in) :: zone_node(8, n)
+    real(rk), intent(in) :: x(3, nnode), v(3, nnode), volume(n), b(3, 8, n)
+    real(rk), intent(in) :: pressure(n), q(n), density(n), sound_speed(n)
     integer, intent(in) :: hourglass !< HOURGLASS_* type
     real(rk), intent(in) :: coefficient !< hourglass coefficient
     real(rk), intent(in) :: stage_dt !< 0 in the predictor, dt in the corrector
     real(rk), intent(in) :: hg(:, :, :) !< stiffness state at t^n (unused otherwise)
     real(rk), intent(inout) :: hg_new(:, :, :) !< stiffness state at t^n+1
-    real(rk), intent(inout) :: force(:, :, :)
-    real(rk), intent(inout), optional :: hg_work(:)
+    real(rk), intent(inout) :: force(3, 8, n)
+    real(rk), intent(inout), optional :: hg_work(n)
     real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
     real(rk) :: ptot, scale, rvol, f(3), bk(3)
     integer :: z, k, m, node
@@ -199,11 +202,12 @@ contains
 
   !> Rate of work of the corner forces of zones 1..n on the node velocities v:
   !> work(z) = sum_k F(:, k, z) . v(:, node k).
-  subroutine zone_work(n, zone_node, force, v, work)
+  subroutine zone_work(n, nnode, zone_node, force, v, work)
     integer, intent(in) :: n
-    integer, intent(in) :: zone_node(:, :)
-    real(rk), intent(in) :: force(:, :, :), v(:, :)
-    real(rk), intent(inout) :: work(:)
+    integer, intent(in) :: nnode !< nodes the zones refer to (v)
+    integer, intent(in) :: zone_node(8, n)
+    real(rk), intent(in) :: force(3, 8, n), v(3, nnode)
+    real(rk), intent(inout) :: work(n)
     integer :: z, k, node
     real(rk) :: w
     do z = 1, n
@@ -221,9 +225,9 @@ contains
   subroutine node_gather_forces(n, ncorner, corner_start, corner_list, corner_force, force)
     integer, intent(in) :: n
     integer, intent(in) :: ncorner !< 8 nzone
-    integer, intent(in) :: corner_start(:), corner_list(:)
+    integer, intent(in) :: corner_start(n + 1), corner_list(ncorner)
     real(rk), intent(in) :: corner_force(3, ncorner) !< the (3, 8, nzone) array, flat
-    real(rk), intent(inout) :: force(:, :)
+    real(rk), intent(inout) :: force(3, n)
     integer :: i, j, c
     real(rk) :: f1, f2, f3
     do i = 1, n
@@ -251,7 +255,7 @@ contains
       divergence, dt, zone, reason, quadratic_factor)
     integer, intent(in) :: n
     real(rk), intent(in) :: cfl, dvol_max, q_linear, q_quadratic
-    real(rk), intent(in) :: length(:), sound_speed(:), divergence(:)
+    real(rk), intent(in) :: length(n), sound_speed(n), divergence(n)
     real(rk), intent(out) :: dt !< smallest step (huge if n = 0)
     integer, intent(out) :: zone !< the zone that sets it
     integer, intent(out) :: reason !< DT_CFL or DT_VOLUME
