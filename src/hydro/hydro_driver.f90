@@ -10,7 +10,7 @@ module hydro_driver
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
       node_gather_forces, zone_time_step, zone_limited_viscosity, zone_edge_limiter, &
-      zone_edge_forces
+      zone_edge_forces, node_velocity_step, zone_energy_step, zone_material_sums
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces, boundary_wall
   implicit none
   private
@@ -186,12 +186,9 @@ contains
     type(state_t), intent(inout) :: state
     real(rk), intent(in) :: v(:, :)
     real(rk), intent(in) :: step
-    integer :: z
     call zone_work(mesh%nzone, mesh%nnode, mesh%zone_node, state%corner_force, v, state%zone_energy)
-    do z = 1, mesh%nzone
-      state%zone_energy(z) = state%zone_energy_old(z) - step * state%zone_energy(z) / &
-          state%zone_mass(z)
-    end do
+    call zone_energy_step(mesh%nzone, state%zone_energy_old, state%zone_mass, step, &
+        state%zone_energy)
   end subroutine hydro_energy_update
 
   !> v_new = v_old + step F / M on owned nodes, constrained; returns the
@@ -205,10 +202,8 @@ contains
     real(rk), intent(out) :: work
     integer :: n, k
     real(rk) :: vavg(3)
-    do n = 1, mesh%nnode_owned
-      v_new(:, n) = state%node_velocity_old(:, n) + step * state%node_force(:, n) / &
-          state%node_mass(n)
-    end do
+    call node_velocity_step(mesh%nnode_owned, state%node_velocity_old, state%node_force, &
+        state%node_mass, step, v_new)
     call boundary_constrain(bc, v_new, .true.)
     call boundary_wall(bc, state%node_position_old, state%node_velocity_old, v_new, step)
     ! Work of the constraint and wall reactions and of the applied pressure.
@@ -294,19 +289,10 @@ contains
     type(state_t), intent(in) :: state
     integer, intent(in) :: zone_material(:) !< material of each local zone
     real(rk), intent(out) :: sums(:, :) !< (4, nmaterial)
-    integer :: z, k, m, node
-    real(rk) :: v2
+    integer :: z, m
     sums = 0.0_rk
-    do z = 1, mesh%nzone_owned
-      m = zone_material(z)
-      sums(1, m) = sums(1, m) + state%zone_mass(z) * state%zone_energy(z)
-      v2 = 0.0_rk
-      do k = 1, 8
-        node = mesh%zone_node(k, z)
-        v2 = v2 + dot_product(state%node_velocity(:, node), state%node_velocity(:, node))
-      end do
-      sums(2, m) = sums(2, m) + 0.0625_rk * state%zone_mass(z) * v2
-    end do
+    call zone_material_sums(mesh%nzone_owned, mesh%nnode, mesh%zone_node, zone_material, &
+        state%zone_mass, state%zone_energy, state%node_velocity, sums)
     if (allocated(state%zone_plastic_work)) then
       do z = 1, mesh%nzone_owned
         m = zone_material(z)

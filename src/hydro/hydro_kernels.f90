@@ -8,7 +8,8 @@ module hydro_kernels
   implicit none
   private
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
-  public :: node_gather_forces, zone_time_step
+  public :: node_gather_forces, zone_time_step, node_velocity_step, zone_energy_step
+  public :: zone_material_sums
   public :: zone_limited_viscosity, zone_edge_limiter, zone_edge_forces
 
   integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
@@ -245,6 +246,57 @@ contains
       force(3, i) = f3
     end do
   end subroutine node_gather_forces
+
+  !> v_new = v_old + step F / M of nodes 1..n.
+  subroutine node_velocity_step(n, v_old, force, mass, step, v_new)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: v_old(3, n), force(3, n), mass(n)
+    real(rk), intent(in) :: step
+    real(rk), intent(inout) :: v_new(3, n)
+    integer :: i
+    do i = 1, n
+      v_new(1, i) = v_old(1, i) + step * force(1, i) / mass(i)
+      v_new(2, i) = v_old(2, i) + step * force(2, i) / mass(i)
+      v_new(3, i) = v_old(3, i) + step * force(3, i) / mass(i)
+    end do
+  end subroutine node_velocity_step
+
+  !> e = e_old - step * work / m of zones 1..n (work holds the rate of work
+  !> on entry and e on return).
+  subroutine zone_energy_step(n, e_old, mass, step, work)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: e_old(n), mass(n)
+    real(rk), intent(in) :: step
+    real(rk), intent(inout) :: work(n)
+    integer :: z
+    do z = 1, n
+      work(z) = e_old(z) - step * work(z) / mass(z)
+    end do
+  end subroutine zone_energy_step
+
+  !> Per-material sums over zones 1..n, m = zone_material(z): sums(1, m) +=
+  !> mass e, sums(2, m) += each corner's eighth of the zone mass at its node's
+  !> velocity, m/16 sum_k |v_k|^2 (the halves of the kinetic energies).
+  subroutine zone_material_sums(n, nnode, zone_node, zone_material, mass, energy, v, sums)
+    integer, intent(in) :: n
+    integer, intent(in) :: nnode !< nodes the zones refer to (v)
+    integer, intent(in) :: zone_node(8, n), zone_material(n)
+    real(rk), intent(in) :: mass(n), energy(n), v(3, nnode)
+    real(rk), intent(inout) :: sums(:, :) !< (>= 2, nmaterial)
+    integer :: z, k, m, node
+    real(rk) :: v2
+    do z = 1, n
+      m = zone_material(z)
+      sums(1, m) = sums(1, m) + mass(z) * energy(z)
+      v2 = 0.0_rk
+      do k = 1, 8
+        node = zone_node(k, z)
+        ! dot_product's order: ((0 + v1 v1) + v2 v2) + v3 v3, 0 + a = a for a >= 0.
+        v2 = v2 + (v(1, node) * v(1, node) + v(2, node) * v(2, node) + v(3, node) * v(3, node))
+      end do
+      sums(2, m) = sums(2, m) + 0.0625_rk * mass(z) * v2
+    end do
+  end subroutine zone_material_sums
 
   !> Smallest stable step over zones 1..n: CFL with the viscous signal speed
   !> b = C1 c + C2 f L |D| in compression, dt = cfl L / (b + sqrt(b^2 + c^2)),
