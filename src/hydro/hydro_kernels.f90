@@ -2,7 +2,7 @@
 !> no MPI, no I/O). The drivers in hydro_driver call them stage by stage.
 module hydro_kernels
   use core_kinds, only: rk
-  use mesh_geometry, only: hex_volume_gradient, hex_characteristic_length, HOURGLASS_BASE, &
+  use mesh_geometry, only: hex_geometry, HOURGLASS_BASE, &
       SIGN_XI, SIGN_ETA, SIGN_ZETA
   use hydro_state, only: HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   implicit none
@@ -45,7 +45,7 @@ contains
     real(rk), intent(inout) :: volume(n), b(3, 8, n), length(n), divergence(n)
     integer, intent(out) :: bad
     real(rk), intent(inout), optional :: gradient(3, n)
-    real(rk) :: xz(3, 8), vz(3, 8), vol, dvdt, dx(3, 3), dv(3, 3), l2
+    real(rk) :: xz(3, 8), vz(3, 8), vol, len, dvdt, dx(3, 3), dv(3, 3), l2
     integer :: z, k, d, node
     bad = 0
     do z = 1, n
@@ -54,7 +54,9 @@ contains
         xz(:, k) = x(:, node)
         vz(:, k) = v(:, node)
       end do
-      call hex_volume_gradient(xz, vol, b(:, :, z))
+      ! dx(:, d): the signed sums of the positions along each logical direction
+      ! (SIGN_XI, SIGN_ETA, SIGN_ZETA), from the same pass as the volume.
+      call hex_geometry(xz, vol, b(:, :, z), len, dx)
       volume(z) = vol
       if (.not. (vol > 0.0_rk)) then
         if (bad == 0) bad = z
@@ -63,7 +65,7 @@ contains
         if (present(gradient)) gradient(:, z) = 0.0_rk
         cycle
       end if
-      length(z) = hex_characteristic_length(xz, vol)
+      length(z) = len
       dvdt = 0.0_rk
       do k = 1, 8
         dvdt = dvdt + b(1, k, z) * vz(1, k) + b(2, k, z) * vz(2, k) + b(3, k, z) * vz(3, k)
@@ -72,12 +74,6 @@ contains
       if (.not. present(gradient)) cycle
       ! Signed sums with the signs of SIGN_XI, SIGN_ETA, SIGN_ZETA written out (the
       ! same additions in the same order as a loop over k from zero: bitwise equal).
-      dx(:, 1) = -xz(:, 1) + xz(:, 2) + xz(:, 3) - xz(:, 4) - xz(:, 5) + xz(:, 6) &
-          + xz(:, 7) - xz(:, 8)
-      dx(:, 2) = -xz(:, 1) - xz(:, 2) + xz(:, 3) + xz(:, 4) - xz(:, 5) - xz(:, 6) &
-          + xz(:, 7) + xz(:, 8)
-      dx(:, 3) = -xz(:, 1) - xz(:, 2) - xz(:, 3) - xz(:, 4) + xz(:, 5) + xz(:, 6) &
-          + xz(:, 7) + xz(:, 8)
       dv(:, 1) = -vz(:, 1) + vz(:, 2) + vz(:, 3) - vz(:, 4) - vz(:, 5) + vz(:, 6) &
           + vz(:, 7) - vz(:, 8)
       dv(:, 2) = -vz(:, 1) - vz(:, 2) + vz(:, 3) + vz(:, 4) - vz(:, 5) - vz(:, 6) &

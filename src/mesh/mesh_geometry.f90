@@ -12,7 +12,7 @@ module mesh_geometry
   implicit none
   private
   public :: hex_volume, hex_volume_gradient, hex_face_area, quad_vector_area
-  public :: quad_node_area_vectors, hex_characteristic_length, hex_centroid
+  public :: quad_node_area_vectors, hex_characteristic_length, hex_centroid, hex_geometry
   public :: HEX_FACE_NODES, SIGN_XI, SIGN_ETA, SIGN_ZETA, HOURGLASS_BASE
   public :: cross
 
@@ -102,6 +102,45 @@ contains
     b(:, 7) = EIGHTH * (ga1 + ga2 + ga3 + gb1 + gb2 + gb3)
     b(:, 8) = EIGHTH * (-ga1 + ga2 + ga3 + gb1 - gb2 - gb3)
   end subroutine hex_volume_gradient
+
+  !> hex_volume_gradient and hex_characteristic_length in one call (the zone
+  !> kinematics), bitwise the same values, and the sums along the logical
+  !> directions axes(:, 1..3) = sum_k s_k x_k with the signs of SIGN_XI,
+  !> SIGN_ETA, SIGN_ZETA (8 a1, 8 a2, 8 a3: the differences between opposite
+  !> face centres, times 4). length is computed whatever the sign of volume.
+  pure subroutine hex_geometry(x, volume, b, length, axes)
+    real(rk), intent(in) :: x(3, 8) !< node coordinates
+    real(rk), intent(out) :: volume !< exact trilinear volume
+    real(rk), intent(out) :: b(3, 8) !< dV/dx of each node
+    real(rk), intent(out) :: length !< volume over the largest face area
+    real(rk), intent(out) :: axes(3, 3)
+    real(rk) :: a1(3), a2(3), a3(3), b1(3), b2(3), b3(3)
+    real(rk) :: ga1(3), ga2(3), ga3(3), gb1(3), gb2(3), gb3(3)
+    call shape_vectors(x, a1, a2, a3, b1, b2, b3)
+    ! 8 a_d is the unscaled sum exactly (a scaling by a power of two).
+    axes(:, 1) = 8.0_rk * a1
+    axes(:, 2) = 8.0_rk * a2
+    axes(:, 3) = 8.0_rk * a3
+    ! hex_volume_gradient from here.
+    ga1 = 8.0_rk * cross(a2, a3) + EIGHT_THIRDS * cross(b3, b2)
+    ga2 = 8.0_rk * cross(a3, a1) + EIGHT_THIRDS * cross(b1, b3)
+    ga3 = 8.0_rk * cross(a1, a2) + EIGHT_THIRDS * cross(b2, b1)
+    gb1 = EIGHT_THIRDS * (cross(b3, a2) + cross(a3, b2))
+    gb2 = EIGHT_THIRDS * (cross(b1, a3) + cross(a1, b3))
+    gb3 = EIGHT_THIRDS * (cross(a2, b1) + cross(b2, a1))
+    volume = 8.0_rk * dot_product(a1, cross(a2, a3)) + EIGHT_THIRDS * ( &
+        dot_product(a1, cross(b3, b2)) + dot_product(a2, cross(b1, b3)) &
+        + dot_product(a3, cross(b2, b1)))
+    b(:, 1) = EIGHTH * (-ga1 - ga2 - ga3 + gb1 + gb2 + gb3)
+    b(:, 2) = EIGHTH * (ga1 - ga2 - ga3 + gb1 - gb2 - gb3)
+    b(:, 3) = EIGHTH * (ga1 + ga2 - ga3 - gb1 - gb2 + gb3)
+    b(:, 4) = EIGHTH * (-ga1 + ga2 - ga3 - gb1 + gb2 - gb3)
+    b(:, 5) = EIGHTH * (-ga1 - ga2 + ga3 - gb1 - gb2 + gb3)
+    b(:, 6) = EIGHTH * (ga1 - ga2 + ga3 - gb1 + gb2 - gb3)
+    b(:, 7) = EIGHTH * (ga1 + ga2 + ga3 + gb1 + gb2 + gb3)
+    b(:, 8) = EIGHTH * (-ga1 + ga2 + ga3 + gb1 - gb2 - gb3)
+    length = hex_characteristic_length(x, volume)
+  end subroutine hex_geometry
 
   !> Vector area of a bilinear quadrilateral p1..p4: the exact integral of n dA.
   pure function quad_vector_area(p) result(area)
