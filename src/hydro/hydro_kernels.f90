@@ -133,7 +133,7 @@ contains
     real(rk), intent(inout) :: force(3, 8, n)
     real(rk), intent(inout), optional :: hg_work(n)
     real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
-    real(rk) :: ptot, scale, rvol, f(3), bk(3)
+    real(rk) :: ptot, scale, rvol, f(3), bk(3), r1, r2, r3
     integer :: z, k, m, node
     logical :: with_hourglass, book
     with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
@@ -166,17 +166,25 @@ contains
       rvol = 1.0_rk / volume(z)
       ! Node by node (each rate(:, m) still sums over k in order: bitwise the
       ! loop over m then k).
-      rate = 0.0_rk
       do k = 1, 8
         bk = b(:, k, z)
         do m = 1, 4
           gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * bk(1) + hx(2, m) * bk(2) &
               + hx(3, m) * bk(3))
         end do
-        rate(:, 1) = rate(:, 1) + gam(k, 1) * vz(:, k)
-        rate(:, 2) = rate(:, 2) + gam(k, 2) * vz(:, k)
-        rate(:, 3) = rate(:, 3) + gam(k, 3) * vz(:, k)
-        rate(:, 4) = rate(:, 4) + gam(k, 4) * vz(:, k)
+      end do
+      do m = 1, 4
+        r1 = 0.0_rk
+        r2 = 0.0_rk
+        r3 = 0.0_rk
+        do k = 1, 8
+          r1 = r1 + gam(k, m) * vz(1, k)
+          r2 = r2 + gam(k, m) * vz(2, k)
+          r3 = r3 + gam(k, m) * vz(3, k)
+        end do
+        rate(1, m) = r1
+        rate(2, m) = r2
+        rate(3, m) = r3
       end do
       if (hourglass == HOURGLASS_VISCOUS) then
         scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)
