@@ -10,7 +10,7 @@ module hydro_driver
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
       node_gather_forces, zone_time_step, zone_limited_viscosity, zone_edge_limiter, &
-      zone_edge_forces, node_velocity_step, zone_energy_step, zone_material_sums
+      zone_edge_forces, node_velocity_step, zone_material_sums
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces, boundary_wall
   implicit none
   private
@@ -186,9 +186,8 @@ contains
     type(state_t), intent(inout) :: state
     real(rk), intent(in) :: v(:, :)
     real(rk), intent(in) :: step
-    call zone_work(mesh%nzone, mesh%nnode, mesh%zone_node, state%corner_force, v, state%zone_energy)
-    call zone_energy_step(mesh%nzone, state%zone_energy_old, state%zone_mass, step, &
-        state%zone_energy)
+    call zone_work(mesh%nzone, mesh%nnode, mesh%zone_node, state%corner_force, v, &
+        state%zone_energy_old, state%zone_mass, step, state%zone_energy)
   end subroutine hydro_energy_update
 
   !> v_new = v_old + step F / M on owned nodes, constrained; returns the

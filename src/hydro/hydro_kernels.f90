@@ -8,7 +8,7 @@ module hydro_kernels
   implicit none
   private
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
-  public :: node_gather_forces, zone_time_step, node_velocity_step, zone_energy_step
+  public :: node_gather_forces, zone_time_step, node_velocity_step
   public :: zone_material_sums
   public :: zone_limited_viscosity, zone_edge_limiter, zone_edge_forces
 
@@ -205,14 +205,15 @@ contains
     end do
   end subroutine zone_corner_forces
 
-  !> Rate of work of the corner forces of zones 1..n on the node velocities v:
-  !> work(z) = sum_k F(:, k, z) . v(:, node k).
-  subroutine zone_work(n, nnode, zone_node, force, v, work)
+  !> Energy update of zones 1..n by the work of their corner forces on the
+  !> node velocities v: e = e_old - step * w / m, w = sum_k F(:, k, z) . v(:, node k).
+  subroutine zone_work(n, nnode, zone_node, force, v, e_old, mass, step, e)
     integer, intent(in) :: n
     integer, intent(in) :: nnode !< nodes the zones refer to (v)
     integer, intent(in) :: zone_node(8, n)
-    real(rk), intent(in) :: force(3, 8, n), v(3, nnode)
-    real(rk), intent(inout) :: work(n)
+    real(rk), intent(in) :: force(3, 8, n), v(3, nnode), e_old(n), mass(n)
+    real(rk), intent(in) :: step
+    real(rk), intent(inout) :: e(n)
     integer :: z, k, node
     real(rk) :: w
     do z = 1, n
@@ -222,7 +223,7 @@ contains
         w = w + force(1, k, z) * v(1, node) + force(2, k, z) * v(2, node) &
             + force(3, k, z) * v(3, node)
       end do
-      work(z) = w
+      e(z) = e_old(z) - step * w / mass(z)
     end do
   end subroutine zone_work
 
@@ -264,19 +265,6 @@ contains
       v_new(3, i) = v_old(3, i) + step * force(3, i) / mass(i)
     end do
   end subroutine node_velocity_step
-
-  !> e = e_old - step * work / m of zones 1..n (work holds the rate of work
-  !> on entry and e on return).
-  subroutine zone_energy_step(n, e_old, mass, step, work)
-    integer, intent(in) :: n
-    real(rk), intent(in) :: e_old(n), mass(n)
-    real(rk), intent(in) :: step
-    real(rk), intent(inout) :: work(n)
-    integer :: z
-    do z = 1, n
-      work(z) = e_old(z) - step * work(z) / mass(z)
-    end do
-  end subroutine zone_energy_step
 
   !> Per-material sums over zones 1..n, m = zone_material(z): sums(1, m) +=
   !> mass e, sums(2, m) += each corner's eighth of the zone mass at its node's
