@@ -231,7 +231,7 @@ contains
   subroutine node_gather_forces(n, ncorner, corner_start, corner_list, corner_force, force)
     integer, intent(in) :: n
     integer, intent(in) :: ncorner !< 8 nzone
-    integer, intent(in) :: corner_start(n + 1), corner_list(ncorner)
+    integer, intent(in) :: corner_start(n + 1), corner_list(corner_start(n + 1) - 1)
     real(rk), intent(in) :: corner_force(3, ncorner) !< the (3, 8, nzone) array, flat
     real(rk), intent(inout) :: force(3, n)
     integer :: i, j, c
