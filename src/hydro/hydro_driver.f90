@@ -311,16 +311,28 @@ contains
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
     real(rk), intent(out) :: sums(5) !< internal, kinetic, momentum x, y, z
-    integer :: n, z
     sums = 0.0_rk
-    do z = 1, mesh%nzone_owned
-      sums(1) = sums(1) + state%zone_mass(z) * state%zone_energy(z)
-    end do
-    do n = 1, mesh%nnode_owned
-      sums(2) = sums(2) + 0.5_rk * state%node_mass(n) * dot_product(state%node_velocity(:, n), &
-          state%node_velocity(:, n))
-      sums(3:5) = sums(3:5) + state%node_mass(n) * state%node_velocity(:, n)
-    end do
+    call energy_sums(mesh%nzone_owned, mesh%nnode_owned, state%zone_mass, state%zone_energy, &
+        state%node_mass, state%node_velocity, sums)
   end subroutine hydro_energies
+
+  !> hydro_energies' sums over zones 1..nz and nodes 1..nn, added to sums.
+  subroutine energy_sums(nz, nn, zone_mass, energy, node_mass, v, sums)
+    integer, intent(in) :: nz, nn
+    real(rk), intent(in) :: zone_mass(nz), energy(nz), node_mass(nn), v(3, nn)
+    real(rk), intent(inout) :: sums(5)
+    integer :: n, z
+    do z = 1, nz
+      sums(1) = sums(1) + zone_mass(z) * energy(z)
+    end do
+    do n = 1, nn
+      ! dot_product's order: ((0 + v1 v1) + v2 v2) + v3 v3, 0 + a = a for a >= 0.
+      sums(2) = sums(2) + 0.5_rk * node_mass(n) * (v(1, n) * v(1, n) + v(2, n) * v(2, n) &
+          + v(3, n) * v(3, n))
+      sums(3) = sums(3) + node_mass(n) * v(1, n)
+      sums(4) = sums(4) + node_mass(n) * v(2, n)
+      sums(5) = sums(5) + node_mass(n) * v(3, n)
+    end do
+  end subroutine energy_sums
 
 end module hydro_driver
