@@ -132,75 +132,135 @@ contains
     real(rk), intent(inout) :: hg_new(:, :, :) !< stiffness state at t^n+1
     real(rk), intent(inout) :: force(3, 8, n)
     real(rk), intent(inout), optional :: hg_work(n)
-    real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
-    real(rk) :: ptot, scale, rvol, f(3), bk(3), r1, r2, r3
-    integer :: z, k, m, node
+    ! Zones go in blocks of LANES, the zone index of the block first in every
+    ! work array, so that each statement is a vector operation over the block's
+    ! zones; every zone gets the same operations in the same order as one zone
+    ! at a time would (bitwise the same forces).
+    integer, parameter :: LANES = 4
+    real(rk) :: xb(LANES, 3, 8), vb(LANES, 3, 8), bb(LANES, 3, 8), hx(LANES, 3, 4)
+    real(rk) :: gam(LANES, 8, 4), rate(LANES, 3, 4), stress(LANES, 3, 4)
+    real(rk) :: ptot(LANES), rvol(LANES), scale(LANES), r(LANES), f(LANES), fp(LANES)
+    real(rk) :: w(LANES), vol
+    logical :: live(LANES)
+    integer :: zl(LANES), z0, nb, i, z, k, m, d, node
     logical :: with_hourglass, book
     with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
     book = present(hg_work)
-    do z = 1, n
-      ptot = pressure(z) + q(z)
-      ! A tangled zone (the run stops at the end of the cycle) gets no hourglass force.
-      if (.not. with_hourglass .or. .not. (volume(z) > 0.0_rk)) then
+    if (.not. with_hourglass) then
+      do z = 1, n
+        ptot(1) = pressure(z) + q(z)
         do k = 1, 8
-          force(:, k, z) = ptot * b(:, k, z)
+          force(:, k, z) = ptot(1) * b(:, k, z)
         end do
-        cycle
-      end if
-      do k = 1, 8
-        node = zone_node(k, z)
-        xz(:, k) = x(:, node)
-        vz(:, k) = v(:, node)
       end do
-      ! gamma_m = h_m - (h_m . x_j) b_j / V  (orthogonal to linear fields)
-      ! hx_m = sum_k h_km x_k with the signs of HOURGLASS_BASE written out (the
-      ! same additions in the same order as the loop over k: bitwise equal).
-      hx(:, 1) = xz(:, 1) - xz(:, 2) + xz(:, 3) - xz(:, 4) + xz(:, 5) - xz(:, 6) + xz(:, 7) &
-          - xz(:, 8)
-      hx(:, 2) = xz(:, 1) + xz(:, 2) - xz(:, 3) - xz(:, 4) - xz(:, 5) - xz(:, 6) + xz(:, 7) &
-          + xz(:, 8)
-      hx(:, 3) = xz(:, 1) - xz(:, 2) - xz(:, 3) + xz(:, 4) - xz(:, 5) + xz(:, 6) + xz(:, 7) &
-          - xz(:, 8)
-      hx(:, 4) = -xz(:, 1) + xz(:, 2) - xz(:, 3) + xz(:, 4) + xz(:, 5) - xz(:, 6) + xz(:, 7) &
-          - xz(:, 8)
-      rvol = 1.0_rk / volume(z)
-      ! Node by node (each rate(:, m) still sums over k in order: bitwise the
-      ! loop over m then k).
+      return
+    end if
+    do z0 = 1, n, LANES
+      nb = min(LANES, n - z0 + 1)
+      ! Lanes past the last zone repeat it; they are not stored.
+      do i = 1, LANES
+        zl(i) = z0 + min(i, nb) - 1
+      end do
       do k = 1, 8
-        bk = b(:, k, z)
+        do i = 1, LANES
+          z = zl(i)
+          node = zone_node(k, z)
+          xb(i, 1, k) = x(1, node)
+          xb(i, 2, k) = x(2, node)
+          xb(i, 3, k) = x(3, node)
+          vb(i, 1, k) = v(1, node)
+          vb(i, 2, k) = v(2, node)
+          vb(i, 3, k) = v(3, node)
+          bb(i, 1, k) = b(1, k, z)
+          bb(i, 2, k) = b(2, k, z)
+          bb(i, 3, k) = b(3, k, z)
+        end do
+      end do
+      ! A tangled zone (the run stops at the end of the cycle) gets no
+      ! hourglass force; its lane computes with volume 1 and is not used.
+      do i = 1, LANES
+        z = zl(i)
+        ptot(i) = pressure(z) + q(z)
+        live(i) = volume(z) > 0.0_rk
+        vol = 1.0_rk
+        if (live(i)) vol = volume(z)
+        rvol(i) = 1.0_rk / vol
+        if (hourglass == HOURGLASS_VISCOUS) then
+          scale(i) = 0.25_rk * coefficient * density(z) * sound_speed(z) * vol**(2.0_rk / 3.0_rk)
+        else
+          scale(i) = 0.25_rk * coefficient * density(z) * sound_speed(z)**2 * vol**(1.0_rk / 3.0_rk)
+        end if
+      end do
+      do d = 1, 3
+        hx(:, d, 1) = xb(:, d, 1) - xb(:, d, 2) + xb(:, d, 3) - xb(:, d, 4) + xb(:, d, 5) &
+            - xb(:, d, 6) + xb(:, d, 7) - xb(:, d, 8)
+        hx(:, d, 2) = xb(:, d, 1) + xb(:, d, 2) - xb(:, d, 3) - xb(:, d, 4) - xb(:, d, 5) &
+            - xb(:, d, 6) + xb(:, d, 7) + xb(:, d, 8)
+        hx(:, d, 3) = xb(:, d, 1) - xb(:, d, 2) - xb(:, d, 3) + xb(:, d, 4) - xb(:, d, 5) &
+            + xb(:, d, 6) + xb(:, d, 7) - xb(:, d, 8)
+        hx(:, d, 4) = -xb(:, d, 1) + xb(:, d, 2) - xb(:, d, 3) + xb(:, d, 4) + xb(:, d, 5) &
+            - xb(:, d, 6) + xb(:, d, 7) - xb(:, d, 8)
+      end do
+      do k = 1, 8
         do m = 1, 4
-          gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * bk(1) + hx(2, m) * bk(2) &
-              + hx(3, m) * bk(3))
+          gam(:, k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(:, 1, m) * bb(:, 1, k) &
+              + hx(:, 2, m) * bb(:, 2, k) + hx(:, 3, m) * bb(:, 3, k))
         end do
       end do
       do m = 1, 4
-        r1 = 0.0_rk
-        r2 = 0.0_rk
-        r3 = 0.0_rk
-        do k = 1, 8
-          r1 = r1 + gam(k, m) * vz(1, k)
-          r2 = r2 + gam(k, m) * vz(2, k)
-          r3 = r3 + gam(k, m) * vz(3, k)
+        do d = 1, 3
+          r = 0.0_rk
+          do k = 1, 8
+            r = r + gam(:, k, m) * vb(:, d, k)
+          end do
+          rate(:, d, m) = r
         end do
-        rate(1, m) = r1
-        rate(2, m) = r2
-        rate(3, m) = r3
       end do
       if (hourglass == HOURGLASS_VISCOUS) then
-        scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)
-        stress = scale * rate
-      else
-        scale = 0.25_rk * coefficient * density(z) * sound_speed(z)**2 * volume(z)**(1.0_rk / 3.0_rk)
-        stress = hg(:, :, z) + 0.5_rk * stage_dt * scale * rate
-        hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale * rate
-      end if
-      if (book) hg_work(z) = hg_work(z) + stage_dt * sum(stress * rate)
-      do k = 1, 8
-        f = ptot * b(:, k, z)
         do m = 1, 4
-          f = f - gam(k, m) * stress(:, m)
+          do d = 1, 3
+            stress(:, d, m) = scale * rate(:, d, m)
+          end do
         end do
-        force(:, k, z) = f
+      else
+        do i = 1, LANES
+          z = zl(i)
+          stress(i, :, :) = hg(:, :, z) + 0.5_rk * stage_dt * scale(i) * rate(i, :, :)
+          if (i <= nb .and. live(i)) hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale(i) * &
+              rate(i, :, :)
+        end do
+      end if
+      if (book) then
+        w = 0.0_rk
+        do m = 1, 4
+          do d = 1, 3
+            w = w + stress(:, d, m) * rate(:, d, m)
+          end do
+        end do
+        do i = 1, nb
+          if (live(i)) hg_work(z0 + i - 1) = hg_work(z0 + i - 1) + stage_dt * w(i)
+        end do
+      end if
+      if (.not. all(live)) then
+        do i = 1, LANES
+          if (live(i)) cycle
+          gam(i, :, :) = 0.0_rk
+          stress(i, :, :) = 0.0_rk
+        end do
+      end if
+      do k = 1, 8
+        do d = 1, 3
+          fp = ptot * bb(:, d, k)
+          f = fp - gam(:, k, 1) * stress(:, d, 1)
+          f = f - gam(:, k, 2) * stress(:, d, 2)
+          f = f - gam(:, k, 3) * stress(:, d, 3)
+          f = f - gam(:, k, 4) * stress(:, d, 4)
+          if (nb == LANES) then
+            force(d, k, z0:z0 + LANES - 1) = f
+          else
+            force(d, k, z0:z0 + nb - 1) = f(1:nb)
+          end if
+        end do
       end do
     end do
   end subroutine zone_corner_forces
