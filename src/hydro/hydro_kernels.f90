@@ -2,7 +2,7 @@
 !> no MPI, no I/O). The drivers in hydro_driver call them stage by stage.
 module hydro_kernels
   use core_kinds, only: rk
-  use mesh_geometry, only: hex_geometry, HOURGLASS_BASE, &
+  use mesh_geometry, only: hex_geometry_lanes, HEX_LANES, HOURGLASS_BASE, &
       SIGN_XI, SIGN_ETA, SIGN_ZETA
   use hydro_state, only: HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   implicit none
@@ -45,48 +45,75 @@ contains
     real(rk), intent(inout) :: volume(n), b(3, 8, n), length(n), divergence(n)
     integer, intent(out) :: bad
     real(rk), intent(inout), optional :: gradient(3, n)
-    real(rk) :: xz(3, 8), vz(3, 8), vol, len, dvdt, dx(3, 3), dv(3, 3), l2
-    integer :: z, k, d, node
+    ! Zones in blocks of HEX_LANES, the zone of the block first in every work
+    ! array (hex_geometry_lanes); each zone gets the operations of one zone at
+    ! a time in the same order (bitwise the same results).
+    real(rk), dimension(HEX_LANES, 3, 8) :: xb, vb, bl
+    real(rk) :: vol(HEX_LANES), len(HEX_LANES), ax(HEX_LANES, 3, 3), dvdt(HEX_LANES)
+    real(rk) :: div(HEX_LANES), dv(HEX_LANES, 3, 3), l2(HEX_LANES), num(HEX_LANES)
+    real(rk) :: g(HEX_LANES, 3)
+    integer :: zl(HEX_LANES), z0, nb, i, z, k, d, node
+    logical :: with_gradient
+    with_gradient = present(gradient)
     bad = 0
-    do z = 1, n
-      do k = 1, 8
-        node = zone_node(k, z)
-        xz(:, k) = x(:, node)
-        vz(:, k) = v(:, node)
+    do z0 = 1, n, HEX_LANES
+      nb = min(HEX_LANES, n - z0 + 1)
+      ! Lanes past the last zone repeat it; they are not stored.
+      do i = 1, HEX_LANES
+        zl(i) = z0 + min(i, nb) - 1
       end do
-      ! dx(:, d): the signed sums of the positions along each logical direction
-      ! (SIGN_XI, SIGN_ETA, SIGN_ZETA), from the same pass as the volume.
-      call hex_geometry(xz, vol, b(:, :, z), len, dx)
-      volume(z) = vol
-      if (.not. (vol > 0.0_rk)) then
-        if (bad == 0) bad = z
-        length(z) = 0.0_rk
-        divergence(z) = 0.0_rk
-        if (present(gradient)) gradient(:, z) = 0.0_rk
-        cycle
-      end if
-      length(z) = len
+      do k = 1, 8
+        do i = 1, HEX_LANES
+          node = zone_node(k, zl(i))
+          xb(i, 1, k) = x(1, node)
+          xb(i, 2, k) = x(2, node)
+          xb(i, 3, k) = x(3, node)
+          vb(i, 1, k) = v(1, node)
+          vb(i, 2, k) = v(2, node)
+          vb(i, 3, k) = v(3, node)
+        end do
+      end do
+      ! ax(:, :, d): the signed sums of the positions along each logical
+      ! direction (SIGN_XI, SIGN_ETA, SIGN_ZETA), from the same pass as the volume.
+      call hex_geometry_lanes(xb, vol, bl, len, ax)
       dvdt = 0.0_rk
       do k = 1, 8
-        dvdt = dvdt + b(1, k, z) * vz(1, k) + b(2, k, z) * vz(2, k) + b(3, k, z) * vz(3, k)
+        dvdt = dvdt + bl(:, 1, k) * vb(:, 1, k) + bl(:, 2, k) * vb(:, 2, k) &
+            + bl(:, 3, k) * vb(:, 3, k)
       end do
-      divergence(z) = dvdt / vol
-      if (.not. present(gradient)) cycle
-      ! Signed sums with the signs of SIGN_XI, SIGN_ETA, SIGN_ZETA written out (the
-      ! same additions in the same order as a loop over k from zero: bitwise equal).
-      dv(:, 1) = -vz(:, 1) + vz(:, 2) + vz(:, 3) - vz(:, 4) - vz(:, 5) + vz(:, 6) &
-          + vz(:, 7) - vz(:, 8)
-      dv(:, 2) = -vz(:, 1) - vz(:, 2) + vz(:, 3) + vz(:, 4) - vz(:, 5) - vz(:, 6) &
-          + vz(:, 7) + vz(:, 8)
-      dv(:, 3) = -vz(:, 1) - vz(:, 2) - vz(:, 3) - vz(:, 4) + vz(:, 5) + vz(:, 6) &
-          + vz(:, 7) + vz(:, 8)
-      do d = 1, 3
-        l2 = dx(1, d)**2 + dx(2, d)**2 + dx(3, d)**2
-        if (l2 > 0.0_rk) then
-          gradient(d, z) = (dv(1, d) * dx(1, d) + dv(2, d) * dx(2, d) + dv(3, d) * dx(3, d)) / l2
-        else
-          gradient(d, z) = 0.0_rk
+      ! (Divisions by 1 in the lanes of tangled zones, whose values are not used.)
+      div = dvdt / merge(vol, 1.0_rk, vol > 0.0_rk)
+      if (with_gradient) then
+        ! Signed sums with the signs of SIGN_XI, SIGN_ETA, SIGN_ZETA written out (the
+        ! same additions in the same order as a loop over k from zero: bitwise equal).
+        do d = 1, 3
+          dv(:, d, 1) = -vb(:, d, 1) + vb(:, d, 2) + vb(:, d, 3) - vb(:, d, 4) - vb(:, d, 5) &
+              + vb(:, d, 6) + vb(:, d, 7) - vb(:, d, 8)
+          dv(:, d, 2) = -vb(:, d, 1) - vb(:, d, 2) + vb(:, d, 3) + vb(:, d, 4) - vb(:, d, 5) &
+              - vb(:, d, 6) + vb(:, d, 7) + vb(:, d, 8)
+          dv(:, d, 3) = -vb(:, d, 1) - vb(:, d, 2) - vb(:, d, 3) - vb(:, d, 4) + vb(:, d, 5) &
+              + vb(:, d, 6) + vb(:, d, 7) + vb(:, d, 8)
+        end do
+        do d = 1, 3
+          l2 = ax(:, 1, d)**2 + ax(:, 2, d)**2 + ax(:, 3, d)**2
+          num = dv(:, 1, d) * ax(:, 1, d) + dv(:, 2, d) * ax(:, 2, d) + dv(:, 3, d) * ax(:, 3, d)
+          g(:, d) = merge(num / merge(l2, 1.0_rk, l2 > 0.0_rk), 0.0_rk, l2 > 0.0_rk)
+        end do
+      end if
+      do i = 1, nb
+        z = z0 + i - 1
+        b(:, :, z) = bl(i, :, :)
+        volume(z) = vol(i)
+        if (.not. (vol(i) > 0.0_rk)) then
+          if (bad == 0) bad = z
+          length(z) = 0.0_rk
+          divergence(z) = 0.0_rk
+          if (with_gradient) gradient(:, z) = 0.0_rk
+          cycle
         end if
+        length(z) = len(i)
+        divergence(z) = div(i)
+        if (with_gradient) gradient(:, z) = g(i, :)
       end do
     end do
   end subroutine zone_kinematics
