@@ -10,7 +10,7 @@ module hydro_driver
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
       node_gather_forces, zone_time_step, zone_limited_viscosity, zone_edge_limiter, &
-      zone_edge_forces
+      zone_edge_forces, node_velocity_step, zone_material_sums
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces, boundary_wall
   implicit none
   private
@@ -61,10 +61,10 @@ contains
     integer, intent(out) :: bad
     integer :: z, m
     if (opt%q_limiter) then
-      call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_length, state%zone_divergence, bad, state%zone_gradient)
     else
-      call zone_kinematics(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_length, state%zone_divergence, bad)
     end if
     do z = 1, mesh%nzone
@@ -134,24 +134,24 @@ contains
     ! The corrector (stage_dt > 0) books the hourglass forces' work.
     if (stage_dt > 0.0_rk .and. allocated(state%zone_hourglass_work)) then
       if (opt%hourglass == HOURGLASS_STIFFNESS) then
-        call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+        call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
             state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
             state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
             state%zone_hourglass, state%zone_hourglass_new, state%corner_force, &
             state%zone_hourglass_work)
       else
-        call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+        call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
             state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
             state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
             unused, unused, state%corner_force, state%zone_hourglass_work)
       end if
     else if (opt%hourglass == HOURGLASS_STIFFNESS) then
-      call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
           state%zone_hourglass, state%zone_hourglass_new, state%corner_force)
     else
-      call zone_corner_forces(mesh%nzone, mesh%zone_node, x, v, state%zone_volume, &
+      call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
           state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
           unused, unused, state%corner_force)
@@ -186,12 +186,8 @@ contains
     type(state_t), intent(inout) :: state
     real(rk), intent(in) :: v(:, :)
     real(rk), intent(in) :: step
-    integer :: z
-    call zone_work(mesh%nzone, mesh%zone_node, state%corner_force, v, state%zone_energy)
-    do z = 1, mesh%nzone
-      state%zone_energy(z) = state%zone_energy_old(z) - step * state%zone_energy(z) / &
-          state%zone_mass(z)
-    end do
+    call zone_work(mesh%nzone, mesh%nnode, mesh%zone_node, state%corner_force, v, &
+        state%zone_energy_old, state%zone_mass, step, state%zone_energy)
   end subroutine hydro_energy_update
 
   !> v_new = v_old + step F / M on owned nodes, constrained; returns the
@@ -205,10 +201,8 @@ contains
     real(rk), intent(out) :: work
     integer :: n, k
     real(rk) :: vavg(3)
-    do n = 1, mesh%nnode_owned
-      v_new(:, n) = state%node_velocity_old(:, n) + step * state%node_force(:, n) / &
-          state%node_mass(n)
-    end do
+    call node_velocity_step(mesh%nnode_owned, state%node_velocity_old, state%node_force, &
+        state%node_mass, step, v_new)
     call boundary_constrain(bc, v_new, .true.)
     call boundary_wall(bc, state%node_position_old, state%node_velocity_old, v_new, step)
     ! Work of the constraint and wall reactions and of the applied pressure.
@@ -294,19 +288,10 @@ contains
     type(state_t), intent(in) :: state
     integer, intent(in) :: zone_material(:) !< material of each local zone
     real(rk), intent(out) :: sums(:, :) !< (4, nmaterial)
-    integer :: z, k, m, node
-    real(rk) :: v2
+    integer :: z, m
     sums = 0.0_rk
-    do z = 1, mesh%nzone_owned
-      m = zone_material(z)
-      sums(1, m) = sums(1, m) + state%zone_mass(z) * state%zone_energy(z)
-      v2 = 0.0_rk
-      do k = 1, 8
-        node = mesh%zone_node(k, z)
-        v2 = v2 + dot_product(state%node_velocity(:, node), state%node_velocity(:, node))
-      end do
-      sums(2, m) = sums(2, m) + 0.0625_rk * state%zone_mass(z) * v2
-    end do
+    call zone_material_sums(mesh%nzone_owned, mesh%nnode, mesh%zone_node, zone_material, &
+        state%zone_mass, state%zone_energy, state%node_velocity, sums)
     if (allocated(state%zone_plastic_work)) then
       do z = 1, mesh%nzone_owned
         m = zone_material(z)
@@ -326,16 +311,28 @@ contains
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
     real(rk), intent(out) :: sums(5) !< internal, kinetic, momentum x, y, z
-    integer :: n, z
     sums = 0.0_rk
-    do z = 1, mesh%nzone_owned
-      sums(1) = sums(1) + state%zone_mass(z) * state%zone_energy(z)
-    end do
-    do n = 1, mesh%nnode_owned
-      sums(2) = sums(2) + 0.5_rk * state%node_mass(n) * dot_product(state%node_velocity(:, n), &
-          state%node_velocity(:, n))
-      sums(3:5) = sums(3:5) + state%node_mass(n) * state%node_velocity(:, n)
-    end do
+    call energy_sums(mesh%nzone_owned, mesh%nnode_owned, state%zone_mass, state%zone_energy, &
+        state%node_mass, state%node_velocity, sums)
   end subroutine hydro_energies
+
+  !> hydro_energies' sums over zones 1..nz and nodes 1..nn, added to sums.
+  subroutine energy_sums(nz, nn, zone_mass, energy, node_mass, v, sums)
+    integer, intent(in) :: nz, nn
+    real(rk), intent(in) :: zone_mass(nz), energy(nz), node_mass(nn), v(3, nn)
+    real(rk), intent(inout) :: sums(5)
+    integer :: n, z
+    do z = 1, nz
+      sums(1) = sums(1) + zone_mass(z) * energy(z)
+    end do
+    do n = 1, nn
+      ! dot_product's order: ((0 + v1 v1) + v2 v2) + v3 v3, 0 + a = a for a >= 0.
+      sums(2) = sums(2) + 0.5_rk * node_mass(n) * (v(1, n) * v(1, n) + v(2, n) * v(2, n) &
+          + v(3, n) * v(3, n))
+      sums(3) = sums(3) + node_mass(n) * v(1, n)
+      sums(4) = sums(4) + node_mass(n) * v(2, n)
+      sums(5) = sums(5) + node_mass(n) * v(3, n)
+    end do
+  end subroutine energy_sums
 
 end module hydro_driver

@@ -2,13 +2,14 @@
 !> no MPI, no I/O). The drivers in hydro_driver call them stage by stage.
 module hydro_kernels
   use core_kinds, only: rk
-  use mesh_geometry, only: hex_volume_gradient, hex_characteristic_length, HOURGLASS_BASE, &
+  use mesh_geometry, only: hex_geometry_lanes, HEX_LANES, HOURGLASS_BASE, &
       SIGN_XI, SIGN_ETA, SIGN_ZETA
   use hydro_state, only: HOURGLASS_VISCOUS, HOURGLASS_STIFFNESS
   implicit none
   private
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
-  public :: node_gather_forces, zone_time_step
+  public :: node_gather_forces, zone_time_step, node_velocity_step
+  public :: zone_material_sums
   public :: zone_limited_viscosity, zone_edge_limiter, zone_edge_forces
 
   integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
@@ -35,59 +36,84 @@ contains
   !> direction, g_d = dv_d . dx_d / |dx_d|^2 (dx_d, dv_d: differences between
   !> opposite face centres). bad returns the first zone with a non-positive or
   !> NaN volume (0 = none).
-  subroutine zone_kinematics(n, zone_node, x, v, volume, b, length, divergence, bad, gradient)
+  subroutine zone_kinematics(n, nnode, zone_node, x, v, volume, b, length, divergence, bad, &
+      gradient)
     integer, intent(in) :: n
-    integer, intent(in) :: zone_node(:, :)
-    real(rk), intent(in) :: x(:, :), v(:, :)
-    real(rk), intent(inout) :: volume(:), b(:, :, :), length(:), divergence(:)
+    integer, intent(in) :: nnode !< nodes the zones refer to (x, v)
+    integer, intent(in) :: zone_node(8, n)
+    real(rk), intent(in) :: x(3, nnode), v(3, nnode)
+    real(rk), intent(inout) :: volume(n), b(3, 8, n), length(n), divergence(n)
     integer, intent(out) :: bad
-    real(rk), intent(inout), optional :: gradient(:, :) !< (3, nzone)
-    real(rk) :: xz(3, 8), vz(3, 8), vol, dvdt, dx(3, 3), dv(3, 3), l2
-    integer :: z, k, d, node
+    real(rk), intent(inout), optional :: gradient(3, n)
+    ! Zones in blocks of HEX_LANES, the zone of the block first in every work
+    ! array (hex_geometry_lanes); each zone gets the operations of one zone at
+    ! a time in the same order (bitwise the same results).
+    real(rk), dimension(HEX_LANES, 3, 8) :: xb, vb, bl
+    real(rk) :: vol(HEX_LANES), len(HEX_LANES), ax(HEX_LANES, 3, 3), dvdt(HEX_LANES)
+    real(rk) :: div(HEX_LANES), dv(HEX_LANES, 3, 3), l2(HEX_LANES), num(HEX_LANES)
+    real(rk) :: g(HEX_LANES, 3)
+    integer :: zl(HEX_LANES), z0, nb, i, z, k, d, node
+    logical :: with_gradient
+    with_gradient = present(gradient)
     bad = 0
-    do z = 1, n
-      do k = 1, 8
-        node = zone_node(k, z)
-        xz(:, k) = x(:, node)
-        vz(:, k) = v(:, node)
+    do z0 = 1, n, HEX_LANES
+      nb = min(HEX_LANES, n - z0 + 1)
+      ! Lanes past the last zone repeat it; they are not stored.
+      do i = 1, HEX_LANES
+        zl(i) = z0 + min(i, nb) - 1
       end do
-      call hex_volume_gradient(xz, vol, b(:, :, z))
-      volume(z) = vol
-      if (.not. (vol > 0.0_rk)) then
-        if (bad == 0) bad = z
-        length(z) = 0.0_rk
-        divergence(z) = 0.0_rk
-        if (present(gradient)) gradient(:, z) = 0.0_rk
-        cycle
-      end if
-      length(z) = hex_characteristic_length(xz, vol)
+      do k = 1, 8
+        do i = 1, HEX_LANES
+          node = zone_node(k, zl(i))
+          xb(i, 1, k) = x(1, node)
+          xb(i, 2, k) = x(2, node)
+          xb(i, 3, k) = x(3, node)
+          vb(i, 1, k) = v(1, node)
+          vb(i, 2, k) = v(2, node)
+          vb(i, 3, k) = v(3, node)
+        end do
+      end do
+      ! ax(:, :, d): the signed sums of the positions along each logical
+      ! direction (SIGN_XI, SIGN_ETA, SIGN_ZETA), from the same pass as the volume.
+      call hex_geometry_lanes(xb, vol, bl, len, ax)
       dvdt = 0.0_rk
       do k = 1, 8
-        dvdt = dvdt + b(1, k, z) * vz(1, k) + b(2, k, z) * vz(2, k) + b(3, k, z) * vz(3, k)
+        dvdt = dvdt + bl(:, 1, k) * vb(:, 1, k) + bl(:, 2, k) * vb(:, 2, k) &
+            + bl(:, 3, k) * vb(:, 3, k)
       end do
-      divergence(z) = dvdt / vol
-      if (.not. present(gradient)) cycle
-      ! Signed sums with the signs of SIGN_XI, SIGN_ETA, SIGN_ZETA written out (the
-      ! same additions in the same order as a loop over k from zero: bitwise equal).
-      dx(:, 1) = -xz(:, 1) + xz(:, 2) + xz(:, 3) - xz(:, 4) - xz(:, 5) + xz(:, 6) &
-          + xz(:, 7) - xz(:, 8)
-      dx(:, 2) = -xz(:, 1) - xz(:, 2) + xz(:, 3) + xz(:, 4) - xz(:, 5) - xz(:, 6) &
-          + xz(:, 7) + xz(:, 8)
-      dx(:, 3) = -xz(:, 1) - xz(:, 2) - xz(:, 3) - xz(:, 4) + xz(:, 5) + xz(:, 6) &
-          + xz(:, 7) + xz(:, 8)
-      dv(:, 1) = -vz(:, 1) + vz(:, 2) + vz(:, 3) - vz(:, 4) - vz(:, 5) + vz(:, 6) &
-          + vz(:, 7) - vz(:, 8)
-      dv(:, 2) = -vz(:, 1) - vz(:, 2) + vz(:, 3) + vz(:, 4) - vz(:, 5) - vz(:, 6) &
-          + vz(:, 7) + vz(:, 8)
-      dv(:, 3) = -vz(:, 1) - vz(:, 2) - vz(:, 3) - vz(:, 4) + vz(:, 5) + vz(:, 6) &
-          + vz(:, 7) + vz(:, 8)
-      do d = 1, 3
-        l2 = dx(1, d)**2 + dx(2, d)**2 + dx(3, d)**2
-        if (l2 > 0.0_rk) then
-          gradient(d, z) = (dv(1, d) * dx(1, d) + dv(2, d) * dx(2, d) + dv(3, d) * dx(3, d)) / l2
-        else
-          gradient(d, z) = 0.0_rk
+      ! (Divisions by 1 in the lanes of tangled zones, whose values are not used.)
+      div = dvdt / merge(vol, 1.0_rk, vol > 0.0_rk)
+      if (with_gradient) then
+        ! Signed sums with the signs of SIGN_XI, SIGN_ETA, SIGN_ZETA written out (the
+        ! same additions in the same order as a loop over k from zero: bitwise equal).
+        do d = 1, 3
+          dv(:, d, 1) = -vb(:, d, 1) + vb(:, d, 2) + vb(:, d, 3) - vb(:, d, 4) - vb(:, d, 5) &
+              + vb(:, d, 6) + vb(:, d, 7) - vb(:, d, 8)
+          dv(:, d, 2) = -vb(:, d, 1) - vb(:, d, 2) + vb(:, d, 3) + vb(:, d, 4) - vb(:, d, 5) &
+              - vb(:, d, 6) + vb(:, d, 7) + vb(:, d, 8)
+          dv(:, d, 3) = -vb(:, d, 1) - vb(:, d, 2) - vb(:, d, 3) - vb(:, d, 4) + vb(:, d, 5) &
+              + vb(:, d, 6) + vb(:, d, 7) + vb(:, d, 8)
+        end do
+        do d = 1, 3
+          l2 = ax(:, 1, d)**2 + ax(:, 2, d)**2 + ax(:, 3, d)**2
+          num = dv(:, 1, d) * ax(:, 1, d) + dv(:, 2, d) * ax(:, 2, d) + dv(:, 3, d) * ax(:, 3, d)
+          g(:, d) = merge(num / merge(l2, 1.0_rk, l2 > 0.0_rk), 0.0_rk, l2 > 0.0_rk)
+        end do
+      end if
+      do i = 1, nb
+        z = z0 + i - 1
+        b(:, :, z) = bl(i, :, :)
+        volume(z) = vol(i)
+        if (.not. (vol(i) > 0.0_rk)) then
+          if (bad == 0) bad = z
+          length(z) = 0.0_rk
+          divergence(z) = 0.0_rk
+          if (with_gradient) gradient(:, z) = 0.0_rk
+          cycle
         end if
+        length(z) = len(i)
+        divergence(z) = div(i)
+        if (with_gradient) gradient(:, z) = g(i, :)
       end do
     end do
   end subroutine zone_kinematics
@@ -119,91 +145,162 @@ contains
   !> With hg_work present, each zone's hg_work grows by the energy its
   !> hourglass forces take from the velocities v over stage_dt:
   !> -stage_dt sum_k f_k . v_k = stage_dt sum_m Q_m . (gamma_m . v).
-  subroutine zone_corner_forces(n, zone_node, x, v, volume, b, pressure, q, density, &
+  subroutine zone_corner_forces(n, nnode, zone_node, x, v, volume, b, pressure, q, density, &
       sound_speed, hourglass, coefficient, stage_dt, hg, hg_new, force, hg_work)
     integer, intent(in) :: n
-    integer, intent(in) :: zone_node(:, :)
-    real(rk), intent(in) :: x(:, :), v(:, :), volume(:), b(:, :, :)
-    real(rk), intent(in) :: pressure(:), q(:), density(:), sound_speed(:)
+    integer, intent(in) :: nnode !< nodes the zones refer to (x, v)
+    integer, intent(in) :: zone_node(8, n)
+    real(rk), intent(in) :: x(3, nnode), v(3, nnode), volume(n), b(3, 8, n)
+    real(rk), intent(in) :: pressure(n), q(n), density(n), sound_speed(n)
     integer, intent(in) :: hourglass !< HOURGLASS_* type
     real(rk), intent(in) :: coefficient !< hourglass coefficient
     real(rk), intent(in) :: stage_dt !< 0 in the predictor, dt in the corrector
     real(rk), intent(in) :: hg(:, :, :) !< stiffness state at t^n (unused otherwise)
     real(rk), intent(inout) :: hg_new(:, :, :) !< stiffness state at t^n+1
-    real(rk), intent(inout) :: force(:, :, :)
-    real(rk), intent(inout), optional :: hg_work(:)
-    real(rk) :: xz(3, 8), vz(3, 8), gam(8, 4), hx(3, 4), rate(3, 4), stress(3, 4)
-    real(rk) :: ptot, scale, rvol, f(3), bk(3)
-    integer :: z, k, m, node
+    real(rk), intent(inout) :: force(3, 8, n)
+    real(rk), intent(inout), optional :: hg_work(n)
+    ! Zones go in blocks of LANES, the zone index of the block first in every
+    ! work array, so that each statement is a vector operation over the block's
+    ! zones; every zone gets the same operations in the same order as one zone
+    ! at a time would (bitwise the same forces).
+    integer, parameter :: LANES = 4
+    real(rk) :: xb(LANES, 3, 8), vb(LANES, 3, 8), bb(LANES, 3, 8), hx(LANES, 3, 4)
+    real(rk) :: gam(LANES, 8, 4), rate(LANES, 3, 4), stress(LANES, 3, 4)
+    real(rk) :: ptot(LANES), rvol(LANES), scale(LANES), r(LANES), f(LANES), fp(LANES)
+    real(rk) :: w(LANES), vol
+    logical :: live(LANES)
+    integer :: zl(LANES), z0, nb, i, z, k, m, d, node
     logical :: with_hourglass, book
     with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
     book = present(hg_work)
-    do z = 1, n
-      ptot = pressure(z) + q(z)
-      ! A tangled zone (the run stops at the end of the cycle) gets no hourglass force.
-      if (.not. with_hourglass .or. .not. (volume(z) > 0.0_rk)) then
+    if (.not. with_hourglass) then
+      do z = 1, n
+        ptot(1) = pressure(z) + q(z)
         do k = 1, 8
-          force(:, k, z) = ptot * b(:, k, z)
+          force(:, k, z) = ptot(1) * b(:, k, z)
         end do
-        cycle
-      end if
-      do k = 1, 8
-        node = zone_node(k, z)
-        xz(:, k) = x(:, node)
-        vz(:, k) = v(:, node)
       end do
-      ! gamma_m = h_m - (h_m . x_j) b_j / V  (orthogonal to linear fields)
-      ! hx_m = sum_k h_km x_k with the signs of HOURGLASS_BASE written out (the
-      ! same additions in the same order as the loop over k: bitwise equal).
-      hx(:, 1) = xz(:, 1) - xz(:, 2) + xz(:, 3) - xz(:, 4) + xz(:, 5) - xz(:, 6) + xz(:, 7) &
-          - xz(:, 8)
-      hx(:, 2) = xz(:, 1) + xz(:, 2) - xz(:, 3) - xz(:, 4) - xz(:, 5) - xz(:, 6) + xz(:, 7) &
-          + xz(:, 8)
-      hx(:, 3) = xz(:, 1) - xz(:, 2) - xz(:, 3) + xz(:, 4) - xz(:, 5) + xz(:, 6) + xz(:, 7) &
-          - xz(:, 8)
-      hx(:, 4) = -xz(:, 1) + xz(:, 2) - xz(:, 3) + xz(:, 4) + xz(:, 5) - xz(:, 6) + xz(:, 7) &
-          - xz(:, 8)
-      rvol = 1.0_rk / volume(z)
-      ! Node by node (each rate(:, m) still sums over k in order: bitwise the
-      ! loop over m then k).
-      rate = 0.0_rk
+      return
+    end if
+    do z0 = 1, n, LANES
+      nb = min(LANES, n - z0 + 1)
+      ! Lanes past the last zone repeat it; they are not stored.
+      do i = 1, LANES
+        zl(i) = z0 + min(i, nb) - 1
+      end do
       do k = 1, 8
-        bk = b(:, k, z)
-        do m = 1, 4
-          gam(k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(1, m) * bk(1) + hx(2, m) * bk(2) &
-              + hx(3, m) * bk(3))
+        do i = 1, LANES
+          z = zl(i)
+          node = zone_node(k, z)
+          xb(i, 1, k) = x(1, node)
+          xb(i, 2, k) = x(2, node)
+          xb(i, 3, k) = x(3, node)
+          vb(i, 1, k) = v(1, node)
+          vb(i, 2, k) = v(2, node)
+          vb(i, 3, k) = v(3, node)
+          bb(i, 1, k) = b(1, k, z)
+          bb(i, 2, k) = b(2, k, z)
+          bb(i, 3, k) = b(3, k, z)
         end do
-        rate(:, 1) = rate(:, 1) + gam(k, 1) * vz(:, k)
-        rate(:, 2) = rate(:, 2) + gam(k, 2) * vz(:, k)
-        rate(:, 3) = rate(:, 3) + gam(k, 3) * vz(:, k)
-        rate(:, 4) = rate(:, 4) + gam(k, 4) * vz(:, k)
+      end do
+      ! A tangled zone (the run stops at the end of the cycle) gets no
+      ! hourglass force; its lane computes with volume 1 and is not used.
+      do i = 1, LANES
+        z = zl(i)
+        ptot(i) = pressure(z) + q(z)
+        live(i) = volume(z) > 0.0_rk
+        vol = 1.0_rk
+        if (live(i)) vol = volume(z)
+        rvol(i) = 1.0_rk / vol
+        if (hourglass == HOURGLASS_VISCOUS) then
+          scale(i) = 0.25_rk * coefficient * density(z) * sound_speed(z) * vol**(2.0_rk / 3.0_rk)
+        else
+          scale(i) = 0.25_rk * coefficient * density(z) * sound_speed(z)**2 * vol**(1.0_rk / 3.0_rk)
+        end if
+      end do
+      do d = 1, 3
+        hx(:, d, 1) = xb(:, d, 1) - xb(:, d, 2) + xb(:, d, 3) - xb(:, d, 4) + xb(:, d, 5) &
+            - xb(:, d, 6) + xb(:, d, 7) - xb(:, d, 8)
+        hx(:, d, 2) = xb(:, d, 1) + xb(:, d, 2) - xb(:, d, 3) - xb(:, d, 4) - xb(:, d, 5) &
+            - xb(:, d, 6) + xb(:, d, 7) + xb(:, d, 8)
+        hx(:, d, 3) = xb(:, d, 1) - xb(:, d, 2) - xb(:, d, 3) + xb(:, d, 4) - xb(:, d, 5) &
+            + xb(:, d, 6) + xb(:, d, 7) - xb(:, d, 8)
+        hx(:, d, 4) = -xb(:, d, 1) + xb(:, d, 2) - xb(:, d, 3) + xb(:, d, 4) + xb(:, d, 5) &
+            - xb(:, d, 6) + xb(:, d, 7) - xb(:, d, 8)
+      end do
+      do k = 1, 8
+        do m = 1, 4
+          gam(:, k, m) = HOURGLASS_BASE(k, m) - rvol * (hx(:, 1, m) * bb(:, 1, k) &
+              + hx(:, 2, m) * bb(:, 2, k) + hx(:, 3, m) * bb(:, 3, k))
+        end do
+      end do
+      do m = 1, 4
+        do d = 1, 3
+          r = 0.0_rk
+          do k = 1, 8
+            r = r + gam(:, k, m) * vb(:, d, k)
+          end do
+          rate(:, d, m) = r
+        end do
       end do
       if (hourglass == HOURGLASS_VISCOUS) then
-        scale = 0.25_rk * coefficient * density(z) * sound_speed(z) * volume(z)**(2.0_rk / 3.0_rk)
-        stress = scale * rate
-      else
-        scale = 0.25_rk * coefficient * density(z) * sound_speed(z)**2 * volume(z)**(1.0_rk / 3.0_rk)
-        stress = hg(:, :, z) + 0.5_rk * stage_dt * scale * rate
-        hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale * rate
-      end if
-      if (book) hg_work(z) = hg_work(z) + stage_dt * sum(stress * rate)
-      do k = 1, 8
-        f = ptot * b(:, k, z)
         do m = 1, 4
-          f = f - gam(k, m) * stress(:, m)
+          do d = 1, 3
+            stress(:, d, m) = scale * rate(:, d, m)
+          end do
         end do
-        force(:, k, z) = f
+      else
+        do i = 1, LANES
+          z = zl(i)
+          stress(i, :, :) = hg(:, :, z) + 0.5_rk * stage_dt * scale(i) * rate(i, :, :)
+          if (i <= nb .and. live(i)) hg_new(:, :, z) = hg(:, :, z) + stage_dt * scale(i) * &
+              rate(i, :, :)
+        end do
+      end if
+      if (book) then
+        w = 0.0_rk
+        do m = 1, 4
+          do d = 1, 3
+            w = w + stress(:, d, m) * rate(:, d, m)
+          end do
+        end do
+        do i = 1, nb
+          if (live(i)) hg_work(z0 + i - 1) = hg_work(z0 + i - 1) + stage_dt * w(i)
+        end do
+      end if
+      if (.not. all(live)) then
+        do i = 1, LANES
+          if (live(i)) cycle
+          gam(i, :, :) = 0.0_rk
+          stress(i, :, :) = 0.0_rk
+        end do
+      end if
+      do k = 1, 8
+        do d = 1, 3
+          fp = ptot * bb(:, d, k)
+          f = fp - gam(:, k, 1) * stress(:, d, 1)
+          f = f - gam(:, k, 2) * stress(:, d, 2)
+          f = f - gam(:, k, 3) * stress(:, d, 3)
+          f = f - gam(:, k, 4) * stress(:, d, 4)
+          if (nb == LANES) then
+            force(d, k, z0:z0 + LANES - 1) = f
+          else
+            force(d, k, z0:z0 + nb - 1) = f(1:nb)
+          end if
+        end do
       end do
     end do
   end subroutine zone_corner_forces
 
-  !> Rate of work of the corner forces of zones 1..n on the node velocities v:
-  !> work(z) = sum_k F(:, k, z) . v(:, node k).
-  subroutine zone_work(n, zone_node, force, v, work)
+  !> Energy update of zones 1..n by the work of their corner forces on the
+  !> node velocities v: e = e_old - step * w / m, w = sum_k F(:, k, z) . v(:, node k).
+  subroutine zone_work(n, nnode, zone_node, force, v, e_old, mass, step, e)
     integer, intent(in) :: n
-    integer, intent(in) :: zone_node(:, :)
-    real(rk), intent(in) :: force(:, :, :), v(:, :)
-    real(rk), intent(inout) :: work(:)
+    integer, intent(in) :: nnode !< nodes the zones refer to (v)
+    integer, intent(in) :: zone_node(8, n)
+    real(rk), intent(in) :: force(3, 8, n), v(3, nnode), e_old(n), mass(n)
+    real(rk), intent(in) :: step
+    real(rk), intent(inout) :: e(n)
     integer :: z, k, node
     real(rk) :: w
     do z = 1, n
@@ -213,7 +310,7 @@ contains
         w = w + force(1, k, z) * v(1, node) + force(2, k, z) * v(2, node) &
             + force(3, k, z) * v(3, node)
       end do
-      work(z) = w
+      e(z) = e_old(z) - step * w / mass(z)
     end do
   end subroutine zone_work
 
@@ -221,9 +318,9 @@ contains
   subroutine node_gather_forces(n, ncorner, corner_start, corner_list, corner_force, force)
     integer, intent(in) :: n
     integer, intent(in) :: ncorner !< 8 nzone
-    integer, intent(in) :: corner_start(:), corner_list(:)
+    integer, intent(in) :: corner_start(n + 1), corner_list(corner_start(n + 1) - 1)
     real(rk), intent(in) :: corner_force(3, ncorner) !< the (3, 8, nzone) array, flat
-    real(rk), intent(inout) :: force(:, :)
+    real(rk), intent(inout) :: force(3, n)
     integer :: i, j, c
     real(rk) :: f1, f2, f3
     do i = 1, n
@@ -242,6 +339,44 @@ contains
     end do
   end subroutine node_gather_forces
 
+  !> v_new = v_old + step F / M of nodes 1..n.
+  subroutine node_velocity_step(n, v_old, force, mass, step, v_new)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: v_old(3, n), force(3, n), mass(n)
+    real(rk), intent(in) :: step
+    real(rk), intent(inout) :: v_new(3, n)
+    integer :: i
+    do i = 1, n
+      v_new(1, i) = v_old(1, i) + step * force(1, i) / mass(i)
+      v_new(2, i) = v_old(2, i) + step * force(2, i) / mass(i)
+      v_new(3, i) = v_old(3, i) + step * force(3, i) / mass(i)
+    end do
+  end subroutine node_velocity_step
+
+  !> Per-material sums over zones 1..n, m = zone_material(z): sums(1, m) +=
+  !> mass e, sums(2, m) += each corner's eighth of the zone mass at its node's
+  !> velocity, m/16 sum_k |v_k|^2 (the halves of the kinetic energies).
+  subroutine zone_material_sums(n, nnode, zone_node, zone_material, mass, energy, v, sums)
+    integer, intent(in) :: n
+    integer, intent(in) :: nnode !< nodes the zones refer to (v)
+    integer, intent(in) :: zone_node(8, n), zone_material(n)
+    real(rk), intent(in) :: mass(n), energy(n), v(3, nnode)
+    real(rk), intent(inout) :: sums(:, :) !< (>= 2, nmaterial)
+    integer :: z, k, m, node
+    real(rk) :: v2
+    do z = 1, n
+      m = zone_material(z)
+      sums(1, m) = sums(1, m) + mass(z) * energy(z)
+      v2 = 0.0_rk
+      do k = 1, 8
+        node = zone_node(k, z)
+        ! dot_product's order: ((0 + v1 v1) + v2 v2) + v3 v3, 0 + a = a for a >= 0.
+        v2 = v2 + (v(1, node) * v(1, node) + v(2, node) * v(2, node) + v(3, node) * v(3, node))
+      end do
+      sums(2, m) = sums(2, m) + 0.0625_rk * mass(z) * v2
+    end do
+  end subroutine zone_material_sums
+
   !> Smallest stable step over zones 1..n: CFL with the viscous signal speed
   !> b = C1 c + C2 f L |D| in compression, dt = cfl L / (b + sqrt(b^2 + c^2)),
   !> and the relative volume change limit dt = dvol_max / |D|. f = 1, or
@@ -251,7 +386,7 @@ contains
       divergence, dt, zone, reason, quadratic_factor)
     integer, intent(in) :: n
     real(rk), intent(in) :: cfl, dvol_max, q_linear, q_quadratic
-    real(rk), intent(in) :: length(:), sound_speed(:), divergence(:)
+    real(rk), intent(in) :: length(n), sound_speed(n), divergence(n)
     real(rk), intent(out) :: dt !< smallest step (huge if n = 0)
     integer, intent(out) :: zone !< the zone that sets it
     integer, intent(out) :: reason !< DT_CFL or DT_VOLUME

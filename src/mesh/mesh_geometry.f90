@@ -13,6 +13,7 @@ module mesh_geometry
   private
   public :: hex_volume, hex_volume_gradient, hex_face_area, quad_vector_area
   public :: quad_node_area_vectors, hex_characteristic_length, hex_centroid
+  public :: hex_geometry_lanes, HEX_LANES
   public :: HEX_FACE_NODES, SIGN_XI, SIGN_ETA, SIGN_ZETA, HOURGLASS_BASE
   public :: cross
 
@@ -32,6 +33,8 @@ module mesh_geometry
       SIGN_XI * SIGN_ETA, SIGN_ETA * SIGN_ZETA, SIGN_XI * SIGN_ZETA, &
       SIGN_XI * SIGN_ETA * SIGN_ZETA], [8, 4])
   real(rk), parameter :: EIGHTH = 0.125_rk, EIGHT_THIRDS = 8.0_rk / 3.0_rk
+  !> Hexes per call of hex_geometry_lanes.
+  integer, parameter :: HEX_LANES = 4
 
 contains
 
@@ -102,6 +105,94 @@ contains
     b(:, 7) = EIGHTH * (ga1 + ga2 + ga3 + gb1 + gb2 + gb3)
     b(:, 8) = EIGHTH * (-ga1 + ga2 + ga3 + gb1 - gb2 - gb3)
   end subroutine hex_volume_gradient
+
+  !> Volume, B-matrix and characteristic length of HEX_LANES hexes at once (the
+  !> zone kinematics), the hex index first in every array so that each
+  !> statement is a vector operation over the hexes: bitwise the values of
+  !> hex_volume_gradient and hex_characteristic_length hex by hex (the same
+  !> operations in the same order; the dot products from zero as
+  !> dot_product's), whatever the sign of the volume. Also the sums along the
+  !> logical directions, axes(:, :, d) = sum_k s_k x_k with the signs of
+  !> SIGN_XI, SIGN_ETA, SIGN_ZETA (8 a_d exactly: a scaling by a power of two).
+  pure subroutine hex_geometry_lanes(x, volume, b, length, axes)
+    real(rk), intent(in) :: x(HEX_LANES, 3, 8) !< node coordinates
+    real(rk), intent(out) :: volume(HEX_LANES), b(HEX_LANES, 3, 8), length(HEX_LANES)
+    real(rk), intent(out) :: axes(HEX_LANES, 3, 3)
+    real(rk), dimension(HEX_LANES, 3) :: a1, a2, a3, b1, b2, b3, ga1, ga2, ga3, gb1, gb2, gb3
+    real(rk), dimension(HEX_LANES, 3) :: d1, d2, c
+    real(rk) :: a2max(HEX_LANES), s(HEX_LANES)
+    integer :: d, f
+    do d = 1, 3
+      a1(:, d) = -x(:, d, 1) + x(:, d, 2) + x(:, d, 3) - x(:, d, 4) - x(:, d, 5) + x(:, d, 6) &
+          + x(:, d, 7) - x(:, d, 8)
+      a2(:, d) = -x(:, d, 1) - x(:, d, 2) + x(:, d, 3) + x(:, d, 4) - x(:, d, 5) - x(:, d, 6) &
+          + x(:, d, 7) + x(:, d, 8)
+      a3(:, d) = -x(:, d, 1) - x(:, d, 2) - x(:, d, 3) - x(:, d, 4) + x(:, d, 5) + x(:, d, 6) &
+          + x(:, d, 7) + x(:, d, 8)
+      b1(:, d) = x(:, d, 1) + x(:, d, 2) - x(:, d, 3) - x(:, d, 4) - x(:, d, 5) - x(:, d, 6) &
+          + x(:, d, 7) + x(:, d, 8)
+      b2(:, d) = x(:, d, 1) - x(:, d, 2) - x(:, d, 3) + x(:, d, 4) - x(:, d, 5) + x(:, d, 6) &
+          + x(:, d, 7) - x(:, d, 8)
+      b3(:, d) = x(:, d, 1) - x(:, d, 2) + x(:, d, 3) - x(:, d, 4) + x(:, d, 5) - x(:, d, 6) &
+          + x(:, d, 7) - x(:, d, 8)
+    end do
+    a1 = EIGHTH * a1
+    a2 = EIGHTH * a2
+    a3 = EIGHTH * a3
+    b1 = EIGHTH * b1
+    b2 = EIGHTH * b2
+    b3 = EIGHTH * b3
+    axes(:, :, 1) = 8.0_rk * a1
+    axes(:, :, 2) = 8.0_rk * a2
+    axes(:, :, 3) = 8.0_rk * a3
+    ga1 = 8.0_rk * cross_lanes(a2, a3) + EIGHT_THIRDS * cross_lanes(b3, b2)
+    ga2 = 8.0_rk * cross_lanes(a3, a1) + EIGHT_THIRDS * cross_lanes(b1, b3)
+    ga3 = 8.0_rk * cross_lanes(a1, a2) + EIGHT_THIRDS * cross_lanes(b2, b1)
+    gb1 = EIGHT_THIRDS * (cross_lanes(b3, a2) + cross_lanes(a3, b2))
+    gb2 = EIGHT_THIRDS * (cross_lanes(b1, a3) + cross_lanes(a1, b3))
+    gb3 = EIGHT_THIRDS * (cross_lanes(a2, b1) + cross_lanes(b2, a1))
+    volume = 8.0_rk * dot_lanes(a1, cross_lanes(a2, a3)) + EIGHT_THIRDS * ( &
+        dot_lanes(a1, cross_lanes(b3, b2)) + dot_lanes(a2, cross_lanes(b1, b3)) &
+        + dot_lanes(a3, cross_lanes(b2, b1)))
+    b(:, :, 1) = EIGHTH * (-ga1 - ga2 - ga3 + gb1 + gb2 + gb3)
+    b(:, :, 2) = EIGHTH * (ga1 - ga2 - ga3 + gb1 - gb2 - gb3)
+    b(:, :, 3) = EIGHTH * (ga1 + ga2 - ga3 - gb1 - gb2 + gb3)
+    b(:, :, 4) = EIGHTH * (-ga1 + ga2 - ga3 - gb1 + gb2 - gb3)
+    b(:, :, 5) = EIGHTH * (-ga1 - ga2 + ga3 - gb1 - gb2 + gb3)
+    b(:, :, 6) = EIGHTH * (ga1 - ga2 + ga3 - gb1 + gb2 - gb3)
+    b(:, :, 7) = EIGHTH * (ga1 + ga2 + ga3 + gb1 + gb2 + gb3)
+    b(:, :, 8) = EIGHTH * (-ga1 + ga2 + ga3 + gb1 - gb2 - gb3)
+    ! hex_characteristic_length.
+    a2max = 0.0_rk
+    do f = 1, 6
+      d1 = x(:, :, HEX_FACE_NODES(3, f)) - x(:, :, HEX_FACE_NODES(1, f))
+      d2 = x(:, :, HEX_FACE_NODES(4, f)) - x(:, :, HEX_FACE_NODES(2, f))
+      c = cross_lanes(d1, d2)
+      s = c(:, 1)**2 + c(:, 2)**2 + c(:, 3)**2
+      a2max = max(a2max, s)
+    end do
+    s = merge(a2max, 1.0_rk, a2max > 0.0_rk)
+    length = merge(2.0_rk * volume / sqrt(s), 0.0_rk, a2max > 0.0_rk)
+  end subroutine hex_geometry_lanes
+
+  !> cross of HEX_LANES pairs of 3-vectors (hex index first).
+  pure function cross_lanes(a, b) result(c)
+    real(rk), intent(in) :: a(HEX_LANES, 3), b(HEX_LANES, 3)
+    real(rk) :: c(HEX_LANES, 3)
+    c(:, 1) = a(:, 2) * b(:, 3) - a(:, 3) * b(:, 2)
+    c(:, 2) = a(:, 3) * b(:, 1) - a(:, 1) * b(:, 3)
+    c(:, 3) = a(:, 1) * b(:, 2) - a(:, 2) * b(:, 1)
+  end function cross_lanes
+
+  !> dot_product of HEX_LANES pairs of 3-vectors, summed from zero as it is.
+  pure function dot_lanes(a, b) result(c)
+    real(rk), intent(in) :: a(HEX_LANES, 3), b(HEX_LANES, 3)
+    real(rk) :: c(HEX_LANES)
+    c = 0.0_rk
+    c = c + a(:, 1) * b(:, 1)
+    c = c + a(:, 2) * b(:, 2)
+    c = c + a(:, 3) * b(:, 3)
+  end function dot_lanes
 
   !> Vector area of a bilinear quadrilateral p1..p4: the exact integral of n dA.
   pure function quad_vector_area(p) result(area)

@@ -93,12 +93,11 @@ contains
     real(rk), intent(out) :: contact_work !< contact work of the step (local)
     type(timers_t), intent(inout) :: timers !< sections 'halo' and 'contact'
     real(rk) :: unused
-    integer :: n
     logical :: strength
 
-    state%node_position_old = state%node_position
-    state%node_velocity_old = state%node_velocity
-    state%zone_energy_old = state%zone_energy
+    call copy_values(3 * mesh%nnode, state%node_position, state%node_position_old)
+    call copy_values(3 * mesh%nnode, state%node_velocity, state%node_velocity_old)
+    call copy_values(mesh%nzone, state%zone_energy, state%zone_energy_old)
 
     strength = allocated(state%zone_stress)
 
@@ -123,10 +122,8 @@ contains
     call timers%start('halo')
     call mesh%node_halo%exchange(state%node_velocity_half)
     call timers%stop('halo')
-    do n = 1, mesh%nnode
-      state%node_position(:, n) = state%node_position_old(:, n) + 0.5_rk * dt * &
-          state%node_velocity_half(:, n)
-    end do
+    call advance_positions(mesh%nnode, state%node_position_old, state%node_velocity_half, &
+        0.5_rk * dt, state%node_position)
     call hydro_energy_update(mesh, state, state%node_velocity_half, 0.5_rk * dt)
     call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
         state%node_position, state%node_velocity_half, bad_half)
@@ -159,12 +156,10 @@ contains
     call timers%start('halo')
     call mesh%node_halo%exchange(state%node_velocity)
     call timers%stop('halo')
-    do n = 1, mesh%nnode
-      state%node_velocity_half(:, n) = 0.5_rk * (state%node_velocity_old(:, n) + &
-          state%node_velocity(:, n))
-      state%node_position(:, n) = state%node_position_old(:, n) + dt * &
-          state%node_velocity_half(:, n)
-    end do
+    call mean_velocities(mesh%nnode, state%node_velocity_old, state%node_velocity, &
+        state%node_velocity_half)
+    call advance_positions(mesh%nnode, state%node_position_old, state%node_velocity_half, dt, &
+        state%node_position)
     call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
     ! Deviatoric stress over the whole step: mid-step geometry, mean velocity.
     if (strength) then
@@ -177,5 +172,30 @@ contains
     call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
         state%node_position, state%node_velocity, bad)
   end subroutine solver_lagrange_step
+
+  !> to = from, n values (explicit shape: a plain copy loop).
+  subroutine copy_values(n, from, to)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: from(n)
+    real(rk), intent(inout) :: to(n)
+    to = from
+  end subroutine copy_values
+
+  !> x = x_old + step v of nodes 1..n.
+  subroutine advance_positions(n, x_old, v, step, x)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: x_old(3, n), v(3, n)
+    real(rk), intent(in) :: step
+    real(rk), intent(inout) :: x(3, n)
+    x = x_old + step * v
+  end subroutine advance_positions
+
+  !> v_mean = (v_old + v) / 2 of nodes 1..n.
+  subroutine mean_velocities(n, v_old, v, v_mean)
+    integer, intent(in) :: n
+    real(rk), intent(in) :: v_old(3, n), v(3, n)
+    real(rk), intent(inout) :: v_mean(3, n)
+    v_mean = 0.5_rk * (v_old + v)
+  end subroutine mean_velocities
 
 end module solver_step
