@@ -52,7 +52,7 @@ contains
     real(rk) :: vol(HEX_LANES), len(HEX_LANES), ax(HEX_LANES, 3, 3), dvdt(HEX_LANES)
     real(rk) :: div(HEX_LANES), dv(HEX_LANES, 3, 3), l2(HEX_LANES), num(HEX_LANES)
     real(rk) :: g(HEX_LANES, 3)
-    integer :: zl(HEX_LANES), z0, nb, i, z, k, d, node
+    integer :: zl(HEX_LANES), z0, nb, i, z, k, d
     logical :: with_gradient
     with_gradient = present(gradient)
     bad = 0
@@ -62,17 +62,7 @@ contains
       do i = 1, HEX_LANES
         zl(i) = z0 + min(i, nb) - 1
       end do
-      do k = 1, 8
-        do i = 1, HEX_LANES
-          node = zone_node(k, zl(i))
-          xb(i, 1, k) = x(1, node)
-          xb(i, 2, k) = x(2, node)
-          xb(i, 3, k) = x(3, node)
-          vb(i, 1, k) = v(1, node)
-          vb(i, 2, k) = v(2, node)
-          vb(i, 3, k) = v(3, node)
-        end do
-      end do
+      call gather_lanes(zl, zone_node, x, v, xb, vb)
       ! ax(:, :, d): the signed sums of the positions along each logical
       ! direction (SIGN_XI, SIGN_ETA, SIGN_ZETA), from the same pass as the volume.
       call hex_geometry_lanes(xb, vol, bl, len, ax)
@@ -163,13 +153,13 @@ contains
     ! work array, so that each statement is a vector operation over the block's
     ! zones; every zone gets the same operations in the same order as one zone
     ! at a time would (bitwise the same forces).
-    integer, parameter :: LANES = 4
+    integer, parameter :: LANES = HEX_LANES
     real(rk) :: xb(LANES, 3, 8), vb(LANES, 3, 8), bb(LANES, 3, 8), hx(LANES, 3, 4)
     real(rk) :: gam(LANES, 8, 4), rate(LANES, 3, 4), stress(LANES, 3, 4)
     real(rk) :: ptot(LANES), rvol(LANES), scale(LANES), r(LANES), f(LANES), fp(LANES)
     real(rk) :: w(LANES), vol
     logical :: live(LANES)
-    integer :: zl(LANES), z0, nb, i, z, k, m, d, node
+    integer :: zl(LANES), z0, nb, i, z, k, m, d
     logical :: with_hourglass, book
     with_hourglass = hourglass == HOURGLASS_VISCOUS .or. hourglass == HOURGLASS_STIFFNESS
     book = present(hg_work)
@@ -188,19 +178,12 @@ contains
       do i = 1, LANES
         zl(i) = z0 + min(i, nb) - 1
       end do
+      call gather_lanes(zl, zone_node, x, v, xb, vb)
       do k = 1, 8
         do i = 1, LANES
-          z = zl(i)
-          node = zone_node(k, z)
-          xb(i, 1, k) = x(1, node)
-          xb(i, 2, k) = x(2, node)
-          xb(i, 3, k) = x(3, node)
-          vb(i, 1, k) = v(1, node)
-          vb(i, 2, k) = v(2, node)
-          vb(i, 3, k) = v(3, node)
-          bb(i, 1, k) = b(1, k, z)
-          bb(i, 2, k) = b(2, k, z)
-          bb(i, 3, k) = b(3, k, z)
+          bb(i, 1, k) = b(1, k, zl(i))
+          bb(i, 2, k) = b(2, k, zl(i))
+          bb(i, 3, k) = b(3, k, zl(i))
         end do
       end do
       ! A tangled zone (the run stops at the end of the cycle) gets no
@@ -602,5 +585,26 @@ contains
       end do
     end do
   end subroutine zone_edge_forces
+
+  !> The positions and velocities of the corners of HEX_LANES zones zl, the
+  !> zone index first (the work arrays of the 4-zone kernels).
+  pure subroutine gather_lanes(zl, zone_node, x, v, xb, vb)
+    integer, intent(in) :: zl(HEX_LANES)
+    integer, intent(in) :: zone_node(:, :)
+    real(rk), intent(in) :: x(:, :), v(:, :)
+    real(rk), intent(out) :: xb(HEX_LANES, 3, 8), vb(HEX_LANES, 3, 8)
+    integer :: i, k, node
+    do k = 1, 8
+      do i = 1, HEX_LANES
+        node = zone_node(k, zl(i))
+        xb(i, 1, k) = x(1, node)
+        xb(i, 2, k) = x(2, node)
+        xb(i, 3, k) = x(3, node)
+        vb(i, 1, k) = v(1, node)
+        vb(i, 2, k) = v(2, node)
+        vb(i, 3, k) = v(3, node)
+      end do
+    end do
+  end subroutine gather_lanes
 
 end module hydro_kernels

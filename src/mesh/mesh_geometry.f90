@@ -78,32 +78,22 @@ contains
         + dot_product(a3, cross(b2, b1)))
   end function hex_volume
 
-  !> Volume and its exact gradient b(:, k) = dV/dx_k (the B-matrix).
+  !> Volume and its exact gradient b(:, k) = dV/dx_k (the B-matrix) of one hex:
+  !> hex_geometry_lanes with the hex in every lane, so there is one B-matrix
+  !> formula and the unit tests exercise the one the cycle runs.
   pure subroutine hex_volume_gradient(x, volume, b)
     real(rk), intent(in) :: x(3, 8) !< node coordinates
     real(rk), intent(out) :: volume !< exact trilinear volume
     real(rk), intent(out) :: b(3, 8) !< dV/dx of each node
-    real(rk) :: a1(3), a2(3), a3(3), b1(3), b2(3), b3(3)
-    real(rk) :: ga1(3), ga2(3), ga3(3), gb1(3), gb2(3), gb3(3)
-    call shape_vectors(x, a1, a2, a3, b1, b2, b3)
-    ga1 = 8.0_rk * cross(a2, a3) + EIGHT_THIRDS * cross(b3, b2)
-    ga2 = 8.0_rk * cross(a3, a1) + EIGHT_THIRDS * cross(b1, b3)
-    ga3 = 8.0_rk * cross(a1, a2) + EIGHT_THIRDS * cross(b2, b1)
-    gb1 = EIGHT_THIRDS * (cross(b3, a2) + cross(a3, b2))
-    gb2 = EIGHT_THIRDS * (cross(b1, a3) + cross(a1, b3))
-    gb3 = EIGHT_THIRDS * (cross(a2, b1) + cross(b2, a1))
-    volume = 8.0_rk * dot_product(a1, cross(a2, a3)) + EIGHT_THIRDS * ( &
-        dot_product(a1, cross(b3, b2)) + dot_product(a2, cross(b1, b3)) &
-        + dot_product(a3, cross(b2, b1)))
-    ! The signs of the loop over k written out (bitwise equal, as above).
-    b(:, 1) = EIGHTH * (-ga1 - ga2 - ga3 + gb1 + gb2 + gb3)
-    b(:, 2) = EIGHTH * (ga1 - ga2 - ga3 + gb1 - gb2 - gb3)
-    b(:, 3) = EIGHTH * (ga1 + ga2 - ga3 - gb1 - gb2 + gb3)
-    b(:, 4) = EIGHTH * (-ga1 + ga2 - ga3 - gb1 + gb2 - gb3)
-    b(:, 5) = EIGHTH * (-ga1 - ga2 + ga3 - gb1 - gb2 + gb3)
-    b(:, 6) = EIGHTH * (ga1 - ga2 + ga3 - gb1 + gb2 - gb3)
-    b(:, 7) = EIGHTH * (ga1 + ga2 + ga3 + gb1 + gb2 + gb3)
-    b(:, 8) = EIGHTH * (-ga1 + ga2 + ga3 + gb1 - gb2 - gb3)
+    real(rk) :: xl(HEX_LANES, 3, 8), bl(HEX_LANES, 3, 8), vol(HEX_LANES), len(HEX_LANES)
+    real(rk) :: axes(HEX_LANES, 3, 3)
+    integer :: i
+    do i = 1, HEX_LANES
+      xl(i, :, :) = x
+    end do
+    call hex_geometry_lanes(xl, vol, bl, len, axes)
+    volume = vol(1)
+    b = bl(1, :, :)
   end subroutine hex_volume_gradient
 
   !> Volume, B-matrix and characteristic length of HEX_LANES hexes at once (the
