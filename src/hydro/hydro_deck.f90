@@ -23,7 +23,7 @@ module hydro_deck
   public :: read_hydro, read_region, read_boundary
 
   !> &hydro: artificial viscosity and hourglass control.
-  type(key_t), parameter, public :: HYDRO_KEYS(7) = [ &
+  type(key_t), parameter, public :: HYDRO_KEYS(9) = [ &
       key_t("viscosity", "c", "'scalar'", "", &
       "artificial viscosity: 'scalar' (zone q) or 'edge' (Caramana-Shashkov-Whalen edge q)"), &
       key_t("q_linear", "r", "0.5", "", &
@@ -34,6 +34,10 @@ module hydro_deck
       "monotonic limiter of the viscosity"), &
       key_t("q_linear_limited", "l", ".true.", "", &
       "the limiter acts on the linear term too (.false.: linear term kept in compression)"), &
+      key_t("heat_flux_linear", "r", "0", "", &
+      "artificial heat flux (Noh) coefficient a of rho L c, >= 0; 0 with heat_flux_quadratic = off"), &
+      key_t("heat_flux_quadratic", "r", "0", "", &
+      "artificial heat flux (Noh) coefficient b of rho L^2 |div v|, >= 0"), &
       key_t("hourglass", "c", "'viscous'", "", &
       "'none', 'viscous' or 'stiffness' (Flanagan-Belytschko)"), &
       key_t("hourglass_coefficient", "r", "0.1", "", &
@@ -90,18 +94,21 @@ contains
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     type(hydro_options_t), intent(inout) :: opt
     type(status_t), intent(inout) :: status
-    real(rk) :: q_linear, q_quadratic, hourglass_coefficient
+    real(rk) :: q_linear, q_quadratic, hourglass_coefficient, heat_flux_linear, heat_flux_quadratic
     character(len=32) :: hourglass, viscosity
     logical :: q_limiter, q_linear_limited
     integer :: ios
     character(len=256) :: msg
     namelist /hydro/ viscosity, q_linear, q_quadratic, q_limiter, q_linear_limited, hourglass, &
+        heat_flux_linear, heat_flux_quadratic, &
         hourglass_coefficient
 
     q_limiter = opt%q_limiter
     q_linear_limited = opt%q_linear_limited
     q_linear = opt%q_linear
     q_quadratic = opt%q_quadratic
+    heat_flux_linear = opt%heat_flux_linear
+    heat_flux_quadratic = opt%heat_flux_quadratic
     hourglass = 'viscous'
     viscosity = 'scalar'
     if (opt%viscosity == VISCOSITY_EDGE) viscosity = 'edge'
@@ -111,6 +118,8 @@ contains
     if (ios /= 0) return
     if (q_linear < 0.0_rk) call status%add('&hydro: q_linear: must be >= 0')
     if (q_quadratic < 0.0_rk) call status%add('&hydro: q_quadratic: must be >= 0')
+    if (heat_flux_linear < 0.0_rk) call status%add('&hydro: heat_flux_linear: must be >= 0')
+    if (heat_flux_quadratic < 0.0_rk) call status%add('&hydro: heat_flux_quadratic: must be >= 0')
     if (hourglass_coefficient < 0.0_rk .or. hourglass_coefficient > 1.0_rk) call status%add( &
         '&hydro: hourglass_coefficient: must be in [0, 1]')
     select case (to_lower(hourglass))
@@ -135,6 +144,8 @@ contains
     end select
     opt%q_linear = q_linear
     opt%q_quadratic = q_quadratic
+    opt%heat_flux_linear = heat_flux_linear
+    opt%heat_flux_quadratic = heat_flux_quadratic
     opt%q_limiter = q_limiter
     opt%q_linear_limited = q_linear_limited
     opt%hourglass_coefficient = hourglass_coefficient

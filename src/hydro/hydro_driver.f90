@@ -10,13 +10,13 @@ module hydro_driver
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
       node_gather_forces, zone_time_step, zone_limited_viscosity, zone_edge_limiter, &
-      zone_edge_forces, node_velocity_step, zone_material_sums
+      zone_edge_forces, node_velocity_step, zone_material_sums, zone_heat_flux
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces, boundary_wall
   implicit none
   private
   public :: hydro_zone_update, hydro_forces, hydro_energy_update, hydro_velocity_update
   public :: hydro_time_step, hydro_energies, material_zones_build, hydro_strength_update
-  public :: hydro_material_energies
+  public :: hydro_material_energies, hydro_heat_flux
 
   !> Zones of each material (local indices), for the EOS loops.
   type, public :: material_zones_t
@@ -260,6 +260,29 @@ contains
       end do
     end do
   end subroutine hydro_strength_update
+
+  !> Artificial heat flux over a step dt (zone_heat_flux), owned zones, from
+  !> the zone state of the step's middle (density, sound speed, length,
+  !> divergence) and the energies at its end; the caller refreshes the ghosts.
+  subroutine hydro_heat_flux(mesh, state, opt, mz, dt)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    type(hydro_options_t), intent(in) :: opt
+    type(material_zones_t), intent(in) :: mz
+    real(rk), intent(in) :: dt
+    integer, allocatable :: material(:)
+    real(rk), allocatable :: e(:)
+    integer :: m
+    allocate(material(mesh%nzone))
+    do m = 1, size(mz%start) - 1
+      material(mz%list(mz%start(m):mz%start(m + 1) - 1)) = m
+    end do
+    e = state%zone_energy
+    call zone_heat_flux(mesh%nzone_owned, mesh%face_neighbour, material, state%zone_mass, &
+        state%zone_density, state%zone_sound_speed, state%zone_length, &
+        state%zone_divergence, opt%heat_flux_linear, opt%heat_flux_quadratic, dt, e, &
+        state%zone_energy)
+  end subroutine hydro_heat_flux
 
   !> Stability limit over owned zones (local), the zone and the reason.
   subroutine hydro_time_step(mesh, state, opt, dt, zone, reason)

@@ -9,7 +9,7 @@ module hydro_kernels
   private
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
   public :: node_gather_forces, zone_time_step, node_velocity_step
-  public :: zone_material_sums
+  public :: zone_material_sums, zone_heat_flux
   public :: zone_limited_viscosity, zone_edge_limiter, zone_edge_forces
 
   integer, parameter, public :: DT_CFL = 1, DT_VOLUME = 2
@@ -402,6 +402,58 @@ contains
       end if
     end do
   end subroutine zone_time_step
+
+  !> Artificial heat flux (W. F. Noh, J. Comput. Phys. 72 (1987) 78-120),
+  !> zones 1..n, over a step dt, energies e (specific, before the flux) into
+  !> energy. Across each face to a neighbour of the same material the zones
+  !> exchange w (e_nb - e_z) of internal energy, with the conductance
+  !>   w = min(dt (h_z + h_nb)/2 (L_z + L_nb)/2, m_z m_nb / (6 (m_z + m_nb))),
+  !>   h = rho L (a c + b L |D|) in compression (D = div v < 0), 0 otherwise,
+  !> (the flux H = h grad e through a face of area ~ L^2 over a distance ~ L).
+  !> The cap is the conductance that would equalize the two zones' energies
+  !> in one step shared among a zone's 6 faces: with it the new energy is a
+  !> convex combination of the old ones (no new extremum, no sign change)
+  !> at any time step. w is symmetric in z and nb and e_nb - e_z antisymmetric,
+  !> bit for bit: the pair's exchanges cancel exactly, and a face across a
+  !> rank boundary gives both ranks the same value.
+  subroutine zone_heat_flux(n, neighbour, material, mass, density, sound_speed, length, &
+      divergence, a, b, dt, e, energy)
+    integer, intent(in) :: n
+    integer, intent(in) :: neighbour(:, :) !< (6, nzone) face neighbours
+    integer, intent(in) :: material(:)
+    real(rk), intent(in) :: mass(:), density(:), sound_speed(:), length(:), divergence(:)
+    real(rk), intent(in) :: a, b, dt
+    real(rk), intent(in) :: e(:)
+    real(rk), intent(inout) :: energy(:)
+    integer :: z, f, nb
+    real(rk) :: hz, w, de
+    do z = 1, n
+      hz = conductivity(z)
+      de = 0.0_rk
+      do f = 1, 6
+        nb = neighbour(f, z)
+        if (nb <= 0) cycle
+        if (material(nb) /= material(z)) cycle
+        w = dt * (0.5_rk * (hz + conductivity(nb))) * (0.5_rk * (length(z) + length(nb)))
+        w = min(w, mass(z) * mass(nb) / (6.0_rk * (mass(z) + mass(nb))))
+        de = de + w * (e(nb) - e(z))
+      end do
+      energy(z) = e(z) + de / mass(z)
+    end do
+
+  contains
+
+    pure real(rk) function conductivity(k)
+      integer, intent(in) :: k
+      if (divergence(k) < 0.0_rk) then
+        conductivity = density(k) * length(k) * (a * sound_speed(k) &
+            - b * length(k) * divergence(k))
+      else
+        conductivity = 0.0_rk
+      end if
+    end function conductivity
+
+  end subroutine zone_heat_flux
 
   !> Monotonic (Christensen-type) limited viscosity of zones 1..n. Along each
   !> logical direction d in compression (g_d < 0) the limiter is

@@ -23,6 +23,8 @@ module hydro_state
     logical :: q_limiter = .true. !< monotonic limiter of the viscosity
     logical :: q_linear_limited = .true. !< the limiter acts on the linear term too
     integer :: viscosity = VISCOSITY_SCALAR !< VISCOSITY_* form of the artificial viscosity
+    real(rk) :: heat_flux_linear = 0.0_rk !< artificial heat flux coefficient a (0: off)
+    real(rk) :: heat_flux_quadratic = 0.0_rk !< artificial heat flux coefficient b (0: off)
     integer :: hourglass = HOURGLASS_VISCOUS !< HOURGLASS_* type
     real(rk) :: hourglass_coefficient = 0.1_rk !< Flanagan-Belytschko coefficient
   end type hydro_options_t

@@ -9,7 +9,7 @@ module solver_step
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_t
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
-      hydro_energy_update, hydro_velocity_update, hydro_strength_update
+      hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux
   use contact_enforce, only: contact_t, contact_apply, contact_work_update
   use contact_monitor, only: contact_audit_run, contact_step_end
   use parallel_env, only: par_sum
@@ -161,6 +161,12 @@ contains
     call advance_positions(mesh%nnode, state%node_position_old, state%node_velocity_half, dt, &
         state%node_position)
     call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
+    if (opt%heat_flux_linear > 0.0_rk .or. opt%heat_flux_quadratic > 0.0_rk) then
+      call hydro_heat_flux(mesh, state, opt, mz, dt)
+      call timers%start('halo')
+      call mesh%zone_halo%exchange(state%zone_energy)
+      call timers%stop('halo')
+    end if
     ! Deviatoric stress over the whole step: mid-step geometry, mean velocity.
     if (strength) then
       state%zone_stress_half = state%zone_stress
