@@ -308,6 +308,10 @@ def build_cases():
     # --- &hydro --------------------------------------------------------------
     c.append(Case("hydro_unknown_hourglass", append("&hydro hourglass = 'magic' /\n"),
                   ["&hydro: hourglass: 'magic' is not a hourglass control"]))
+    c.append(Case("hydro_negative_heat_flux",
+                  append("&hydro heat_flux_quadratic = -1.0, heat_flux_linear = -0.5 /\n"),
+                  ["&hydro: heat_flux_linear: must be >= 0",
+                   "&hydro: heat_flux_quadratic: must be >= 0"], min_errors=2))
     # --- &mesh ---------------------------------------------------------------
     box_group = ("  type = 'box'\n  x = 0.0, 1.0\n  nx = 10\n  y = 0.0, 0.1\n  ny = 1\n"
                  "  z = 0.0, 0.1\n  nz = 1\n")
