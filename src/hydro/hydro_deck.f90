@@ -37,7 +37,7 @@ module hydro_deck
       key_t("heat_flux_linear", "r", "0", "", &
       "artificial heat flux (Noh) coefficient a of rho L c, >= 0; 0 with heat_flux_quadratic = off"), &
       key_t("heat_flux_quadratic", "r", "0", "", &
-      "artificial heat flux (Noh) coefficient b of rho L^2 |div v|, >= 0"), &
+      "artificial heat flux (Noh) coefficient b of rho L^2 abs(div v) in compression, >= 0"), &
       key_t("hourglass", "c", "'viscous'", "", &
       "'none', 'viscous' or 'stiffness' (Flanagan-Belytschko)"), &
       key_t("hourglass_coefficient", "r", "0.1", "", &
