@@ -23,7 +23,7 @@ module hydro_deck
   public :: read_hydro, read_region, read_boundary
 
   !> &hydro: artificial viscosity and hourglass control.
-  type(key_t), parameter, public :: HYDRO_KEYS(9) = [ &
+  type(key_t), parameter, public :: HYDRO_KEYS(10) = [ &
       key_t("viscosity", "c", "'scalar'", "", &
       "artificial viscosity: 'scalar' (zone q) or 'edge' (Caramana-Shashkov-Whalen edge q)"), &
       key_t("q_linear", "r", "0.5", "", &
@@ -38,6 +38,8 @@ module hydro_deck
       "artificial heat flux (Noh) coefficient a of rho L c, >= 0; 0 with heat_flux_quadratic = off"), &
       key_t("heat_flux_quadratic", "r", "0", "", &
       "artificial heat flux (Noh) coefficient b of rho L^2 abs(div v) in compression, >= 0"), &
+      key_t("scheme", "c", "'predictor_corrector'", "", &
+      "time integration: 'predictor_corrector' or 'single' (one force evaluation)"), &
       key_t("hourglass", "c", "'viscous'", "", &
       "'none', 'viscous' or 'stiffness' (Flanagan-Belytschko)"), &
       key_t("hourglass_coefficient", "r", "0.1", "", &
@@ -95,12 +97,12 @@ contains
     type(hydro_options_t), intent(inout) :: opt
     type(status_t), intent(inout) :: status
     real(rk) :: q_linear, q_quadratic, hourglass_coefficient, heat_flux_linear, heat_flux_quadratic
-    character(len=32) :: hourglass, viscosity
+    character(len=32) :: hourglass, viscosity, scheme
     logical :: q_limiter, q_linear_limited
     integer :: ios
     character(len=256) :: msg
     namelist /hydro/ viscosity, q_linear, q_quadratic, q_limiter, q_linear_limited, hourglass, &
-        heat_flux_linear, heat_flux_quadratic, &
+        heat_flux_linear, heat_flux_quadratic, scheme, &
         hourglass_coefficient
 
     q_limiter = opt%q_limiter
@@ -113,6 +115,8 @@ contains
     viscosity = 'scalar'
     if (opt%viscosity == VISCOSITY_EDGE) viscosity = 'edge'
     hourglass_coefficient = opt%hourglass_coefficient
+    scheme = 'predictor_corrector'
+    if (opt%single_stage) scheme = 'single'
     read(sect, nml=hydro, iostat=ios, iomsg=msg)
     if (ios /= 0) call status%add('&hydro: cannot read the group: '//trim(msg))
     if (ios /= 0) return
@@ -149,6 +153,15 @@ contains
     opt%q_limiter = q_limiter
     opt%q_linear_limited = q_linear_limited
     opt%hourglass_coefficient = hourglass_coefficient
+    select case (to_lower(scheme))
+    case ('predictor_corrector')
+      opt%single_stage = .false.
+    case ('single')
+      opt%single_stage = .true.
+    case default
+      call status%add('&hydro: scheme: '''//trim(scheme)//''' is not a scheme '// &
+          '(valid: predictor_corrector, single)')
+    end select
   end subroutine read_hydro
 
   !> The index-th &region into spec; its block is named among blocks, and rank 0

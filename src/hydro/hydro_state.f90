@@ -21,6 +21,7 @@ module hydro_state
     real(rk) :: q_linear = 0.5_rk !< linear viscosity coefficient C1
     real(rk) :: q_quadratic = 2.0_rk / 3.0_rk !< quadratic viscosity coefficient C2
     logical :: q_limiter = .true. !< monotonic limiter of the viscosity
+    logical :: single_stage = .false. !< one force evaluation per cycle (experimental)
     logical :: q_linear_limited = .true. !< the limiter acts on the linear term too
     integer :: viscosity = VISCOSITY_SCALAR !< VISCOSITY_* form of the artificial viscosity
     real(rk) :: heat_flux_linear = 0.0_rk !< artificial heat flux coefficient a (0: off)

@@ -20,6 +20,8 @@ module io_deck
   use hydro_deck, only: read_hydro, read_region, read_boundary, HYDRO_KEYS, REGION_KEYS, &
       BOUNDARY_KEYS
   use contact_deck, only: read_contact, CONTACT_KEYS
+  use material_table, only: STRENGTH_NONE
+  use hydro_boundary, only: BC_WALL
   use io_config, only: config_t, read_control, read_output, read_probe, CONTROL_KEYS, &
       OUTPUT_KEYS, PROBE_KEYS
   implicit none
@@ -236,6 +238,22 @@ contains
         end select
       end associate
     end do
+    ! The single-stage scheme is for gas dynamics: its position update is not
+    ! the one the contact, the wall and the strength update assume.
+    if (config%hydro%single_stage) then
+      if (counts(9) > 0) call status%add("&hydro: scheme: 'single' is for gas dynamics: "// &
+          "not with &contact (use 'predictor_corrector')")
+      if (allocated(config%materials)) then
+        if (any(config%materials(:counts(4))%strength /= STRENGTH_NONE)) call status%add( &
+            "&hydro: scheme: 'single' is for gas dynamics: not with a &material with "// &
+            "strength (use 'predictor_corrector')")
+      end if
+      if (allocated(config%boundaries)) then
+        if (any(config%boundaries(:counts(7))%kind == BC_WALL)) call status%add( &
+            "&hydro: scheme: 'single' is for gas dynamics: not with a 'wall' &boundary "// &
+            "(use 'predictor_corrector')")
+      end if
+    end if
     ! A key whose value was rejected above was not read: what the groups then
     ! say about that key (required, out of range) is not news.
     do k = 1, nbad

@@ -43,8 +43,14 @@ contains
     call timers%start('step')
     state%dt = dt
     if (ct%npair > 0) ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
-    call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
-        work, contact_work, timers)
+    if (opt%single_stage) then
+      call solver_single_step(opt, materials, mesh, state, mz, bc, dt, bad, work, timers)
+      bad_half = 0
+      contact_work = 0.0_rk
+    else
+      call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
+          work, contact_work, timers)
+    end if
     state%boundary_work = state%boundary_work + par_sum(work)
     if (ct%npair > 0) then
       state%contact_work = state%contact_work + par_sum(contact_work)
@@ -178,6 +184,46 @@ contains
     call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
         state%node_position, state%node_velocity, bad)
   end subroutine solver_lagrange_step
+
+  !> One cycle with one force evaluation (experimental; gas only: no contact,
+  !> no strength): forces at t^n, v^n+1 = v^n + dt F^n / M, x^n+1 = x^n +
+  !> dt v^n+1 (symplectic Euler), e^n+1 = e^n - dt F^n . (v^n + v^n+1)/2 / m
+  !> (the kinetic energy change, so total energy is conserved exactly), then
+  !> the zone state at t^n+1.
+  subroutine solver_single_step(opt, materials, mesh, state, mz, bc, dt, bad, work, timers)
+    type(hydro_options_t), intent(in) :: opt
+    type(material_t), intent(in) :: materials(:)
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_zones_t), intent(in) :: mz
+    type(boundary_t), intent(inout) :: bc
+    real(rk), intent(in) :: dt
+    integer, intent(out) :: bad
+    real(rk), intent(out) :: work
+    type(timers_t), intent(inout) :: timers
+    call copy_values(3 * mesh%nnode, state%node_position, state%node_position_old)
+    call copy_values(3 * mesh%nnode, state%node_velocity, state%node_velocity_old)
+    call copy_values(mesh%nzone, state%zone_energy, state%zone_energy_old)
+    call hydro_forces(mesh, state, opt, bc, state%node_position, state%node_velocity, dt)
+    call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
+    call timers%start('halo')
+    call mesh%node_halo%exchange(state%node_velocity)
+    call timers%stop('halo')
+    call advance_positions(mesh%nnode, state%node_position_old, state%node_velocity, dt, &
+        state%node_position)
+    call mean_velocities(mesh%nnode, state%node_velocity_old, state%node_velocity, &
+        state%node_velocity_half)
+    call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
+    if (opt%heat_flux_linear > 0.0_rk .or. opt%heat_flux_quadratic > 0.0_rk) then
+      call hydro_heat_flux(mesh, state, opt, mz, dt)
+      call timers%start('halo')
+      call mesh%zone_halo%exchange(state%zone_energy)
+      call timers%stop('halo')
+    end if
+    if (opt%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = state%zone_hourglass_new
+    call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
+        state%node_position, state%node_velocity, bad)
+  end subroutine solver_single_step
 
   !> to = from, n values (explicit shape: a plain copy loop).
   subroutine copy_values(n, from, to)

@@ -308,6 +308,10 @@ def build_cases():
     # --- &hydro --------------------------------------------------------------
     c.append(Case("hydro_unknown_hourglass", append("&hydro hourglass = 'magic' /\n"),
                   ["&hydro: hourglass: 'magic' is not a hourglass control"]))
+    c.append(Case("hydro_single_stage_wall",
+                  append("&hydro scheme = 'single' /\n&boundary set = 'xmax', type = 'wall', "
+                         "wall_point = 1.0, 0.0, 0.0, wall_normal = -1.0, 0.0, 0.0 /\n"),
+                  ["&hydro: scheme: 'single' is for gas dynamics: not with a 'wall' &boundary"]))
     c.append(Case("hydro_negative_heat_flux",
                   append("&hydro heat_flux_quadratic = -1.0, heat_flux_linear = -0.5 /\n"),
                   ["&hydro: heat_flux_linear: must be >= 0",
