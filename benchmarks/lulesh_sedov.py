@@ -316,7 +316,7 @@ def plot(data):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    fig, ax = plt.subplots(figsize=(10.0, 4.8))
     for label, rows in data["impact3d"].items():
         xs = [statistics.median(r["loops"]) for r in rows]
         ys = [r["L1"] for r in rows]
@@ -339,7 +339,7 @@ def plot(data):
     ax.set_ylabel("L1(rho), r < 1.1")
     ax.set_title("LULESH Sedov problem, t = 0.01 (s = 15, 20, 30, 45)")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.02, 0.5))
     fig.tight_layout()
     os.makedirs(os.path.dirname(PNG), exist_ok=True)
     fig.savefig(PNG, dpi=110)

@@ -38,7 +38,8 @@ Sections kept in their own files are appended: lulesh_section.md (written by
 benchmarks/lulesh_sedov.py, the LULESH Sedov problem of issue 18, which then
 calls this script with --render-only), viscosity_section.md (hand-run:
 scalar against edge viscosity), heat_flux_section.md (hand-run: Noh's
-artificial heat flux), cycle_section.md (hand-run profile and
+artificial heat flux), single_stage_section.md (hand-run: one force
+evaluation per cycle), cycle_section.md (hand-run profile and
 speed of the cycle), search_section.md, contact_section.md, scaling_section.md.
 
 --quick drops 60^3 from the speed runs and 40^3 from the Sedov
@@ -859,7 +860,7 @@ def render(data, out_path, img_dir):
     # in their own files so that re-rendering this document does not drop them.
     # The parallel contact scaling section is written by benchmarks/scaling.py.
     for name in ("lulesh_section.md", "viscosity_section.md", "heat_flux_section.md",
-                 "cycle_section.md",
+                 "single_stage_section.md", "cycle_section.md",
                  "search_section.md", "contact_section.md", "scaling_section.md"):
         extra = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
         if os.path.exists(extra):
