@@ -22,6 +22,7 @@ module hydro_driver
   type, public :: material_zones_t
     integer, allocatable :: start(:) !< CSR over materials
     integer, allocatable :: list(:) !< local zones
+    integer, allocatable :: zone(:) !< material of each local zone
   end type material_zones_t
 
 contains
@@ -33,6 +34,7 @@ contains
     type(material_zones_t), intent(out) :: mz
     integer :: m, z, k
     allocate(mz%start(nmaterial + 1), mz%list(size(zone_material)))
+    mz%zone = zone_material
     k = 0
     mz%start(1) = 1
     do m = 1, nmaterial
@@ -270,15 +272,9 @@ contains
     type(hydro_options_t), intent(in) :: opt
     type(material_zones_t), intent(in) :: mz
     real(rk), intent(in) :: dt
-    integer, allocatable :: material(:)
     real(rk), allocatable :: e(:)
-    integer :: m
-    allocate(material(mesh%nzone))
-    do m = 1, size(mz%start) - 1
-      material(mz%list(mz%start(m):mz%start(m + 1) - 1)) = m
-    end do
     e = state%zone_energy
-    call zone_heat_flux(mesh%nzone_owned, mesh%face_neighbour, material, state%zone_mass, &
+    call zone_heat_flux(mesh%nzone_owned, mesh%face_neighbour, mz%zone, state%zone_mass, &
         state%zone_density, state%zone_sound_speed, state%zone_length, &
         state%zone_divergence, opt%heat_flux_linear, opt%heat_flux_quadratic, dt, e, &
         state%zone_energy)

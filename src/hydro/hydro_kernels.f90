@@ -426,32 +426,27 @@ contains
     real(rk), intent(in) :: e(:)
     real(rk), intent(inout) :: energy(:)
     integer :: z, f, nb
-    real(rk) :: hz, w, de
+    real(rk), allocatable :: h(:)
+    real(rk) :: w, de
+    ! Conductivities of every zone the owned ones see (ghosts included), once.
+    allocate(h(size(e)))
+    do z = 1, size(e)
+      h(z) = 0.0_rk
+      if (divergence(z) < 0.0_rk) h(z) = density(z) * length(z) * (a * sound_speed(z) &
+          - b * length(z) * divergence(z))
+    end do
     do z = 1, n
-      hz = conductivity(z)
       de = 0.0_rk
       do f = 1, 6
         nb = neighbour(f, z)
         if (nb <= 0) cycle
         if (material(nb) /= material(z)) cycle
-        w = dt * (0.5_rk * (hz + conductivity(nb))) * (0.5_rk * (length(z) + length(nb)))
+        w = dt * (0.5_rk * (h(z) + h(nb))) * (0.5_rk * (length(z) + length(nb)))
         w = min(w, mass(z) * mass(nb) / (6.0_rk * (mass(z) + mass(nb))))
         de = de + w * (e(nb) - e(z))
       end do
       energy(z) = e(z) + de / mass(z)
     end do
-
-  contains
-
-    pure real(rk) function conductivity(k)
-      integer, intent(in) :: k
-      if (divergence(k) < 0.0_rk) then
-        conductivity = density(k) * length(k) * (a * sound_speed(k) &
-            - b * length(k) * divergence(k))
-      else
-        conductivity = 0.0_rk
-      end if
-    end function conductivity
 
   end subroutine zone_heat_flux
 

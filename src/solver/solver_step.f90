@@ -101,9 +101,7 @@ contains
     real(rk) :: unused
     logical :: strength
 
-    call copy_values(3 * mesh%nnode, state%node_position, state%node_position_old)
-    call copy_values(3 * mesh%nnode, state%node_velocity, state%node_velocity_old)
-    call copy_values(mesh%nzone, state%zone_energy, state%zone_energy_old)
+    call save_step_start(mesh, state)
 
     strength = allocated(state%zone_stress)
 
@@ -167,12 +165,8 @@ contains
     call advance_positions(mesh%nnode, state%node_position_old, state%node_velocity_half, dt, &
         state%node_position)
     call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
-    if (opt%heat_flux_linear > 0.0_rk .or. opt%heat_flux_quadratic > 0.0_rk) then
-      call hydro_heat_flux(mesh, state, opt, mz, dt)
-      call timers%start('halo')
-      call mesh%zone_halo%exchange(state%zone_energy)
-      call timers%stop('halo')
-    end if
+    if (opt%heat_flux_linear > 0.0_rk .or. opt%heat_flux_quadratic > 0.0_rk) &
+        call heat_flux_step(opt, mesh, state, mz, dt, timers)
     ! Deviatoric stress over the whole step: mid-step geometry, mean velocity.
     if (strength) then
       state%zone_stress_half = state%zone_stress
@@ -201,9 +195,7 @@ contains
     integer, intent(out) :: bad
     real(rk), intent(out) :: work
     type(timers_t), intent(inout) :: timers
-    call copy_values(3 * mesh%nnode, state%node_position, state%node_position_old)
-    call copy_values(3 * mesh%nnode, state%node_velocity, state%node_velocity_old)
-    call copy_values(mesh%nzone, state%zone_energy, state%zone_energy_old)
+    call save_step_start(mesh, state)
     call hydro_forces(mesh, state, opt, bc, state%node_position, state%node_velocity, dt)
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
     call timers%start('halo')
@@ -214,16 +206,37 @@ contains
     call mean_velocities(mesh%nnode, state%node_velocity_old, state%node_velocity, &
         state%node_velocity_half)
     call hydro_energy_update(mesh, state, state%node_velocity_half, dt)
-    if (opt%heat_flux_linear > 0.0_rk .or. opt%heat_flux_quadratic > 0.0_rk) then
-      call hydro_heat_flux(mesh, state, opt, mz, dt)
-      call timers%start('halo')
-      call mesh%zone_halo%exchange(state%zone_energy)
-      call timers%stop('halo')
-    end if
+    if (opt%heat_flux_linear > 0.0_rk .or. opt%heat_flux_quadratic > 0.0_rk) &
+        call heat_flux_step(opt, mesh, state, mz, dt, timers)
     if (opt%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = state%zone_hourglass_new
     call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
         state%node_position, state%node_velocity, bad)
   end subroutine solver_single_step
+
+  !> x^n, v^n, e^n kept for the step (position, velocity and energy updates
+  !> start from them).
+  subroutine save_step_start(mesh, state)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(inout) :: state
+    call copy_values(3 * mesh%nnode, state%node_position, state%node_position_old)
+    call copy_values(3 * mesh%nnode, state%node_velocity, state%node_velocity_old)
+    call copy_values(mesh%nzone, state%zone_energy, state%zone_energy_old)
+  end subroutine save_step_start
+
+  !> Noh's heat flux over the step on the owned zones, then the ghosts'
+  !> energies refreshed (section 'halo').
+  subroutine heat_flux_step(opt, mesh, state, mz, dt, timers)
+    type(hydro_options_t), intent(in) :: opt
+    type(mesh_t), intent(inout) :: mesh
+    type(state_t), intent(inout) :: state
+    type(material_zones_t), intent(in) :: mz
+    real(rk), intent(in) :: dt
+    type(timers_t), intent(inout) :: timers
+    call hydro_heat_flux(mesh, state, opt, mz, dt)
+    call timers%start('halo')
+    call mesh%zone_halo%exchange(state%zone_energy)
+    call timers%stop('halo')
+  end subroutine heat_flux_step
 
   !> to = from, n values (explicit shape: a plain copy loop).
   subroutine copy_values(n, from, to)
