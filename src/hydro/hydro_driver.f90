@@ -7,7 +7,8 @@ module hydro_driver
   use material_table, only: material_t, material_eos, material_flow, STRENGTH_NONE, &
       EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN
   use material_strength, only: deviatoric_update, velocity_gradient, equivalent_strain_rate
-  use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS, VISCOSITY_EDGE
+  use hydro_state, only: state_t, hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, &
+      HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
       node_gather_forces, zone_time_step, zone_limited_viscosity, zone_edge_limiter, &
       zone_edge_forces, node_velocity_step, zone_material_sums, zone_heat_flux
@@ -122,6 +123,12 @@ contains
 
   !> Corner forces of every local zone and the force of every owned node
   !> (internal + applied pressure) at positions x, velocities v.
+  !> Viscous hourglass control acts once per cycle, in the corrector
+  !> (stage_dt > 0), on the step's starting velocities v^n (state's
+  !> node_velocity_old) at the mid-step geometry: the half-step lag of a
+  !> central-difference code. The predictor's forces are pressure and q only.
+  !> Stiffness hourglass control acts in both stages on v (its stress is a
+  !> state). docs/theory.md, hourglass control.
   subroutine hydro_forces(mesh, state, opt, bc, x, v, stage_dt, stress)
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(inout) :: state
@@ -133,9 +140,11 @@ contains
     integer :: z, k
     real(rk) :: s(6), b(3)
     real(rk) :: unused(3, 4, 1)
-    ! The corrector (stage_dt > 0) books the hourglass forces' work.
-    if (stage_dt > 0.0_rk .and. allocated(state%zone_hourglass_work)) then
-      if (opt%hourglass == HOURGLASS_STIFFNESS) then
+    logical :: book
+    ! The corrector books the hourglass forces' work.
+    book = stage_dt > 0.0_rk .and. allocated(state%zone_hourglass_work)
+    if (opt%hourglass == HOURGLASS_STIFFNESS) then
+      if (book) then
         call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
             state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
             state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
@@ -145,17 +154,26 @@ contains
         call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
             state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
             state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
-            unused, unused, state%corner_force, state%zone_hourglass_work)
+            state%zone_hourglass, state%zone_hourglass_new, state%corner_force)
       end if
-    else if (opt%hourglass == HOURGLASS_STIFFNESS) then
-      call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
-          state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
-          state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
-          state%zone_hourglass, state%zone_hourglass_new, state%corner_force)
+    else if (opt%hourglass == HOURGLASS_VISCOUS .and. stage_dt > 0.0_rk) then
+      if (book) then
+        call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, &
+            state%node_velocity_old, state%zone_volume, state%zone_bmatrix, &
+            state%zone_pressure, state%zone_viscosity, state%zone_density, &
+            state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
+            unused, unused, state%corner_force, state%zone_hourglass_work)
+      else
+        call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, &
+            state%node_velocity_old, state%zone_volume, state%zone_bmatrix, &
+            state%zone_pressure, state%zone_viscosity, state%zone_density, &
+            state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
+            unused, unused, state%corner_force)
+      end if
     else
       call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_pressure, state%zone_viscosity, state%zone_density, &
-          state%zone_sound_speed, opt%hourglass, opt%hourglass_coefficient, stage_dt, &
+          state%zone_sound_speed, HOURGLASS_NONE, opt%hourglass_coefficient, stage_dt, &
           unused, unused, state%corner_force)
     end if
     if (opt%viscosity == VISCOSITY_EDGE) call zone_edge_forces(mesh%nzone, mesh%zone_node, x, v, &
