@@ -5,6 +5,7 @@ Usage:
     /usr/bin/python3 benchmarks/run_benchmarks.py --exe build/impact3d [--quick]
         [--commit HASH] [--out docs/benchmarks.md] [--img-dir docs/img]
         [--json benchmarks/results.json] [--render-only]
+        [--baseline-exe OLD_BINARY --baseline-commit HASH]
 
 Sections of the report:
 
@@ -39,8 +40,10 @@ benchmarks/lulesh_sedov.py, the LULESH Sedov problem of issue 18, which then
 calls this script with --render-only), viscosity_section.md (hand-run:
 scalar against edge viscosity), heat_flux_section.md (hand-run: Noh's
 artificial heat flux), single_stage_section.md (hand-run: one force
-evaluation per cycle), cycle_section.md (hand-run profile and
-speed of the cycle), search_section.md, contact_section.md, scaling_section.md.
+evaluation per cycle), cycle_profile_section.md (the cycle's profile and
+speed before / after a change: benchmarks/cycle_profile.py, run from here
+with --baseline-exe OLD [--baseline-commit HASH]), cycle_section.md
+(hand-run profile and speed of the earlier rounds), search_section.md, contact_section.md, scaling_section.md.
 
 --quick drops 60^3 from the speed runs and 40^3 from the Sedov
 work-precision runs.  Raw results go to --json; --render-only rewrites the
@@ -852,7 +855,7 @@ def render(data, out_path, img_dir):
     # in their own files so that re-rendering this document does not drop them.
     # The parallel contact scaling section is written by benchmarks/scaling.py.
     for name in ("lulesh_section.md", "viscosity_section.md", "heat_flux_section.md",
-                 "single_stage_section.md", "cycle_section.md",
+                 "single_stage_section.md", "cycle_profile_section.md", "cycle_section.md",
                  "search_section.md", "contact_section.md", "scaling_section.md"):
         extra = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
         if os.path.exists(extra):
@@ -914,6 +917,10 @@ def main():
                    help="rewrite the report from --json without running anything")
     p.add_argument("--comment-file", default=None,
                    help="markdown appended as a Discussion section")
+    p.add_argument("--baseline-exe", default=None,
+                   help="binary before a change: also regenerate the cycle's profile and "
+                        "speed before / after (benchmarks/cycle_profile.py)")
+    p.add_argument("--baseline-commit", default=None, help="commit of --baseline-exe")
     args = p.parse_args()
 
     if args.render_only:
@@ -935,6 +942,12 @@ def main():
         data["speed"] = speed_runs(exe, args.quick)
         data["wp_sod"] = wp_runs(exe, "sod", WP_SOD)
         data["wp_sedov"] = wp_runs(exe, "sedov", WP_SEDOV[:-1] if args.quick else WP_SEDOV)
+        if args.baseline_exe:
+            import cycle_profile
+            cycle_profile.run(argparse.Namespace(
+                exe=exe, baseline=args.baseline_exe, commit=meta["commit"],
+                baseline_commit=args.baseline_commit, pairs=5, no_profile=False,
+                out=os.path.join(HERE, "cycle_profile_section.md")))
         meta["load_end"] = os.getloadavg()[0]
         meta["waited"] = WAIT["waited"]
         meta["elapsed"] = time.time() - start
