@@ -376,7 +376,7 @@ contains
     real(rk), intent(in), optional :: quadratic_factor(:, :) !< (2, nzone) zone_edge_q
     integer :: z
     real(rk) :: bq, c, trial, c2
-    logical :: edge
+    logical :: edge, volume_bound
     edge = present(quadratic_factor)
     c2 = q_quadratic
     dt = huge(1.0_rk)
@@ -395,7 +395,15 @@ contains
           reason = DT_CFL
         end if
       end if
-      if (abs(divergence(z)) * dt > dvol_max) then
+      ! |D| dt > dvol_max; while dt is still huge (no CFL bound yet: cold,
+      ! unstrained zones so far) the product would overflow, so compare |D|
+      ! with dvol_max / huge instead.
+      if (dt < huge(1.0_rk)) then
+        volume_bound = abs(divergence(z)) * dt > dvol_max
+      else
+        volume_bound = abs(divergence(z)) > dvol_max / huge(1.0_rk)
+      end if
+      if (volume_bound) then
         dt = dvol_max / abs(divergence(z))
         zone = z
         reason = DT_VOLUME
