@@ -5,7 +5,7 @@ Usage:
     /usr/bin/python3 benchmarks/run_benchmarks.py --exe build/impact3d [--quick]
         [--commit HASH] [--out docs/benchmarks.md] [--img-dir docs/img]
         [--json benchmarks/results.json] [--render-only]
-        [--baseline-exe OLD_BINARY --baseline-commit HASH]
+        [--baseline-exe OLD_BINARY --baseline-commit HASH] [--lulesh-curves]
 
 Sections of the report:
 
@@ -37,7 +37,9 @@ Sections of the report:
 
 Sections kept in their own files are appended: lulesh_section.md (written by
 benchmarks/lulesh_sedov.py, the LULESH Sedov problem of issue 18, which then
-calls this script with --render-only), viscosity_section.md (hand-run:
+calls this script with --render-only; --lulesh-curves re-runs all its
+curves of LULESH_CURVES from here, so that with --baseline-exe one command
+regenerates everything but the contact sections), viscosity_section.md (hand-run:
 scalar against edge viscosity), heat_flux_section.md (hand-run: Noh's
 artificial heat flux), single_stage_section.md (hand-run: one force
 evaluation per cycle), cycle_profile_section.md (the cycle's profile and
@@ -896,6 +898,31 @@ def git_commit():
         return "unknown"
 
 
+# The LULESH-problem curves of docs/benchmarks.md: (label, &hydro keys); the
+# first also runs LULESH itself when benchmarks/lulesh_sedov.py finds it.
+LULESH_CURVES = [
+    ("defaults", ""),
+    ("heat flux b = 32", "heat_flux_quadratic = 32.0"),
+    ("edge + heat flux b = 32", "viscosity = 'edge', heat_flux_quadratic = 32.0"),
+    ("single-stage", "scheme = 'single'"),
+    ("single-stage + edge + heat flux b = 32",
+     "scheme = 'single', viscosity = 'edge', heat_flux_quadratic = 32.0"),
+]
+
+
+def lulesh_curves(exe):
+    """Re-run every LULESH-problem curve (lulesh_sedov.py writes its section)."""
+    script = os.path.join(HERE, "lulesh_sedov.py")
+    for i, (label, hydro) in enumerate(LULESH_CURVES):
+        cmd = [sys.executable, script, "--exe", exe, "--label", label, "--no-document"]
+        if hydro:
+            cmd += ["--hydro", hydro]
+        if i > 0:
+            cmd += ["--keep", "--no-lulesh"]
+        log("LULESH problem, curve '%s'" % label)
+        subprocess.run(cmd, check=True, env=dict(ENV, PYTHONPATH=os.path.join(ROOT, "tools")))
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -916,6 +943,9 @@ def main():
                    help="binary before a change: also regenerate the cycle's profile and "
                         "speed before / after (benchmarks/cycle_profile.py)")
     p.add_argument("--baseline-commit", default=None, help="commit of --baseline-exe")
+    p.add_argument("--lulesh-curves", action="store_true",
+                   help="also re-run the LULESH-problem curves of LULESH_CURVES "
+                        "(benchmarks/lulesh_sedov.py; LULESH itself with the first)")
     args = p.parse_args()
 
     if args.render_only:
@@ -943,6 +973,8 @@ def main():
                 exe=exe, baseline=args.baseline_exe, commit=meta["commit"],
                 baseline_commit=args.baseline_commit, pairs=5, no_profile=False,
                 out=os.path.join(HERE, "cycle_profile_section.md")))
+        if args.lulesh_curves:
+            lulesh_curves(exe)
         meta["load_end"] = os.getloadavg()[0]
         meta["waited"] = WAIT["waited"]
         meta["elapsed"] = time.time() - start
