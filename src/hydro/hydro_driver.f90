@@ -10,8 +10,7 @@ module hydro_driver
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, &
       HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
-      node_gather_forces, node_gather_pressure_forces, zone_time_step, &
-      zone_limited_viscosity, zone_edge_limiter, &
+      node_gather_forces, zone_time_step, zone_limited_viscosity, zone_edge_limiter, &
       zone_edge_forces, node_velocity_step, zone_material_sums, zone_heat_flux
   use hydro_boundary, only: boundary_t, boundary_constrain, boundary_pressure_forces, boundary_wall
   implicit none
@@ -19,7 +18,6 @@ module hydro_driver
   public :: hydro_zone_update, hydro_forces, hydro_energy_update, hydro_velocity_update
   public :: hydro_time_step, hydro_energies, material_zones_build, hydro_strength_update
   public :: hydro_material_energies, hydro_heat_flux
-  public :: hydro_pressure_only, hydro_pressure_forces
 
   !> Zones of each material (local indices), for the EOS loops.
   type, public :: material_zones_t
@@ -55,10 +53,7 @@ contains
   !> and velocities v. bad = first local zone with a non-positive volume.
   !> With the edge viscosity the zone q is 0 and state%zone_edge_q holds the
   !> edge limiter and the strong-shock factor (the forces are hydro_forces').
-  !> With work_step, first the energy update of a pressure-only stage
-  !> (hydro_pressure_forces) over work_step on the velocities v, in the same
-  !> pass: hydro_energy_update without the corner forces.
-  subroutine hydro_zone_update(mesh, state, materials, mz, opt, bc, x, v, bad, work_step)
+  subroutine hydro_zone_update(mesh, state, materials, mz, opt, bc, x, v, bad)
     type(mesh_t), intent(inout) :: mesh
     type(boundary_t), intent(in) :: bc
     type(state_t), intent(inout) :: state
@@ -67,22 +62,8 @@ contains
     type(hydro_options_t), intent(in) :: opt
     real(rk), intent(in) :: x(:, :), v(:, :)
     integer, intent(out) :: bad
-    real(rk), intent(in), optional :: work_step
     integer :: z, m
-    if (present(work_step)) then
-      if (opt%q_limiter) then
-        call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
-            state%zone_bmatrix, state%zone_length, state%zone_divergence, bad, &
-            gradient=state%zone_gradient, pressure=state%zone_pressure, &
-            q=state%zone_viscosity, mass=state%zone_mass, e_old=state%zone_energy_old, &
-            step=work_step, e=state%zone_energy)
-      else
-        call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
-            state%zone_bmatrix, state%zone_length, state%zone_divergence, bad, &
-            pressure=state%zone_pressure, q=state%zone_viscosity, mass=state%zone_mass, &
-            e_old=state%zone_energy_old, step=work_step, e=state%zone_energy)
-      end if
-    else if (opt%q_limiter) then
+    if (opt%q_limiter) then
       call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_length, state%zone_divergence, bad, state%zone_gradient)
     else
@@ -139,31 +120,6 @@ contains
       shock_factor = 0.5_rk
     end select
   end function shock_factor
-
-  !> Whether the predictor's corner forces are (p + q) dV/dx alone: no
-  !> deviatoric stress, no stiffness hourglass state, no edge viscosity (the
-  !> viscous hourglass force acts in the corrector only). Such a stage needs no
-  !> corner array: hydro_pressure_forces, then hydro_zone_update with work_step.
-  pure logical function hydro_pressure_only(opt, strength)
-    type(hydro_options_t), intent(in) :: opt
-    logical, intent(in) :: strength !< some zone carries deviatoric stress
-    hydro_pressure_only = .not. strength .and. opt%hourglass /= HOURGLASS_STIFFNESS .and. &
-        opt%viscosity /= VISCOSITY_EDGE
-  end function hydro_pressure_only
-
-  !> hydro_forces of a pressure-only stage (hydro_pressure_only) at positions
-  !> x: the owned nodes' forces gathered straight from p + q and the B-matrix,
-  !> no corner array (the same values, bitwise), plus the applied pressure.
-  subroutine hydro_pressure_forces(mesh, state, bc, x)
-    type(mesh_t), intent(in) :: mesh
-    type(state_t), intent(inout) :: state
-    type(boundary_t), intent(inout) :: bc
-    real(rk), intent(in) :: x(:, :)
-    call node_gather_pressure_forces(mesh%nnode_owned, 8 * mesh%nzone, mesh%corner_start, &
-        mesh%corner_list, state%zone_pressure, state%zone_viscosity, state%zone_bmatrix, &
-        state%node_force)
-    call boundary_pressure_forces(bc, mesh, x, state%node_force)
-  end subroutine hydro_pressure_forces
 
   !> Corner forces of every local zone and the force of every owned node
   !> (internal + applied pressure) at positions x, velocities v.

@@ -10,8 +10,8 @@ module hydro_kernels
   private
 
   interface
-    !> The C library's cube root (correctly rounded in glibc within 1 ulp,
-    !> and several times cheaper than x**(1/3) through pow).
+    !> The C library's cube root (within 1 ulp in glibc, and cheaper than
+    !> x**(1/3) through pow).
     pure function c_cbrt(x) bind(c, name='cbrt') result(y)
       import :: c_double
       real(c_double), value, intent(in) :: x
@@ -19,7 +19,7 @@ module hydro_kernels
     end function c_cbrt
   end interface
   public :: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work
-  public :: node_gather_forces, node_gather_pressure_forces, zone_time_step, node_velocity_step
+  public :: node_gather_forces, zone_time_step, node_velocity_step
   public :: zone_material_sums, zone_heat_flux
   public :: zone_limited_viscosity, zone_edge_limiter, zone_edge_forces
 
@@ -47,13 +47,8 @@ contains
   !> direction, g_d = dv_d . dx_d / |dx_d|^2 (dx_d, dv_d: differences between
   !> opposite face centres). bad returns the first zone with a non-positive or
   !> NaN volume (0 = none).
-  !> With pressure present (and q, mass, e_old, step, e), the stage's energy
-  !> update of a stage whose corner forces are (p + q) dV/dx alone is done in
-  !> the same pass, before b is overwritten: e = e_old - step w / m with
-  !> w = sum_k F_k . v_k, F_k = (p + q) b(:, k) of the b on entry; the same
-  !> operations in the same order as zone_work on those forces (bitwise equal).
   subroutine zone_kinematics(n, nnode, zone_node, x, v, volume, b, length, divergence, bad, &
-      gradient, pressure, q, mass, e_old, step, e)
+      gradient)
     integer, intent(in) :: n
     integer, intent(in) :: nnode !< nodes the zones refer to (x, v)
     integer, intent(in) :: zone_node(8, n)
@@ -61,19 +56,16 @@ contains
     real(rk), intent(inout) :: volume(n), b(3, 8, n), length(n), divergence(n)
     integer, intent(out) :: bad
     real(rk), intent(inout), optional :: gradient(3, n)
-    real(rk), intent(in), optional :: pressure(n), q(n), mass(n), e_old(n), step
-    real(rk), intent(inout), optional :: e(n)
     ! Zones in blocks of HEX_LANES, the zone of the block first in every work
     ! array (hex_geometry_lanes); each zone gets the operations of one zone at
     ! a time in the same order (bitwise the same results).
     real(rk), dimension(HEX_LANES, 3, 8) :: xb, vb, bl
     real(rk) :: vol(HEX_LANES), len(HEX_LANES), ax(HEX_LANES, 3, 3), dvdt(HEX_LANES)
     real(rk) :: div(HEX_LANES), dv(HEX_LANES, 3, 3), l2(HEX_LANES), num(HEX_LANES)
-    real(rk) :: g(HEX_LANES, 3), ptot(HEX_LANES), w(HEX_LANES)
+    real(rk) :: g(HEX_LANES, 3)
     integer :: zl(HEX_LANES), z0, nb, i, z, k, d
-    logical :: with_gradient, with_work
+    logical :: with_gradient
     with_gradient = present(gradient)
-    with_work = present(pressure)
     bad = 0
     do z0 = 1, n, HEX_LANES
       nb = min(HEX_LANES, n - z0 + 1)
@@ -82,23 +74,6 @@ contains
         zl(i) = z0 + min(i, nb) - 1
       end do
       call gather_lanes(zl, zone_node, x, v, xb, vb)
-      if (with_work) then
-        do i = 1, HEX_LANES
-          ptot(i) = pressure(zl(i)) + q(zl(i))
-        end do
-        w = 0.0_rk
-        do k = 1, 8
-          do i = 1, HEX_LANES
-            w(i) = w(i) + (ptot(i) * b(1, k, zl(i))) * vb(i, 1, k) &
-                + (ptot(i) * b(2, k, zl(i))) * vb(i, 2, k) &
-                + (ptot(i) * b(3, k, zl(i))) * vb(i, 3, k)
-          end do
-        end do
-        do i = 1, nb
-          z = z0 + i - 1
-          e(z) = e_old(z) - step * w(i) / mass(z)
-        end do
-      end if
       ! ax(:, :, d): the signed sums of the positions along each logical
       ! direction (SIGN_XI, SIGN_ETA, SIGN_ZETA), from the same pass as the volume.
       call hex_geometry_lanes(xb, vol, bl, len, ax)
@@ -357,37 +332,6 @@ contains
       force(3, i) = f3
     end do
   end subroutine node_gather_forces
-
-  !> node_gather_forces for corner forces that are (p + q) dV/dx alone,
-  !> without the corner array: F(:, k, z) = (p(z) + q(z)) b(:, k, z), formed
-  !> as zone_corner_forces forms it and summed in the same order (bitwise equal).
-  subroutine node_gather_pressure_forces(n, ncorner, corner_start, corner_list, pressure, &
-      q, b, force)
-    integer, intent(in) :: n
-    integer, intent(in) :: ncorner !< 8 nzone
-    integer, intent(in) :: corner_start(n + 1), corner_list(corner_start(n + 1) - 1)
-    real(rk), intent(in) :: pressure(*), q(*)
-    real(rk), intent(in) :: b(3, ncorner) !< the (3, 8, nzone) B-matrices, flat
-    real(rk), intent(inout) :: force(3, n)
-    integer :: i, j, c, z
-    real(rk) :: f1, f2, f3, ptot
-    do i = 1, n
-      f1 = 0.0_rk
-      f2 = 0.0_rk
-      f3 = 0.0_rk
-      do j = corner_start(i), corner_start(i + 1) - 1
-        c = corner_list(j)
-        z = (c - 1) / 8 + 1
-        ptot = pressure(z) + q(z)
-        f1 = f1 + ptot * b(1, c)
-        f2 = f2 + ptot * b(2, c)
-        f3 = f3 + ptot * b(3, c)
-      end do
-      force(1, i) = f1
-      force(2, i) = f2
-      force(3, i) = f3
-    end do
-  end subroutine node_gather_pressure_forces
 
   !> v_new = v_old + step F / M of nodes 1..n.
   subroutine node_velocity_step(n, v_old, force, mass, step, v_new)

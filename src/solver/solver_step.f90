@@ -9,8 +9,7 @@ module solver_step
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
   use hydro_boundary, only: boundary_t
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
-      hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux, &
-      hydro_pressure_only, hydro_pressure_forces
+      hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux
   use contact_enforce, only: contact_t, contact_apply, contact_work_update
   use contact_monitor, only: contact_audit_run, contact_step_end
   use parallel_env, only: par_sum
@@ -100,19 +99,14 @@ contains
     real(rk), intent(out) :: contact_work !< contact work of the step (local)
     type(timers_t), intent(inout) :: timers !< sections 'halo' and 'contact'
     real(rk) :: unused
-    logical :: strength, lean
+    logical :: strength
 
     call save_step_start(mesh, state)
 
     strength = allocated(state%zone_stress)
-    ! A pressure-only predictor keeps no corner forces: its energy update is
-    ! done in the pass of the half-step geometry.
-    lean = hydro_pressure_only(opt, strength)
 
     ! Predictor: forces at t^n, half-step velocities, geometry and EOS at t^n+1/2.
-    if (lean) then
-      call hydro_pressure_forces(mesh, state, bc, state%node_position)
-    else if (strength) then
+    if (strength) then
       call hydro_forces(mesh, state, opt, bc, state%node_position, &
           state%node_velocity, 0.0_rk, state%zone_stress)
     else
@@ -134,14 +128,9 @@ contains
     call timers%stop('halo')
     call advance_positions(mesh%nnode, state%node_position_old, state%node_velocity_half, &
         0.5_rk * dt, state%node_position)
-    if (lean) then
-      call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
-          state%node_position, state%node_velocity_half, bad_half, 0.5_rk * dt)
-    else
-      call hydro_energy_update(mesh, state, state%node_velocity_half, 0.5_rk * dt)
-      call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
-          state%node_position, state%node_velocity_half, bad_half)
-    end if
+    call hydro_energy_update(mesh, state, state%node_velocity_half, 0.5_rk * dt)
+    call hydro_zone_update(mesh, state, materials, mz, opt, bc, &
+        state%node_position, state%node_velocity_half, bad_half)
     if (strength) call hydro_strength_update(mesh, state, materials, mz, &
         state%node_velocity_half, 0.5_rk * dt, state%zone_stress, state%zone_stress_half, .false.)
 
