@@ -42,9 +42,12 @@ module parallel_env
 
 contains
 
-  !> Start MPI and record rank and size.
+  !> Start MPI and record rank and size. PT-Scotch (parallel_partition)
+  !> communicates from threads of its own: MPI must allow calls from any
+  !> thread (MPI_THREAD_MULTIPLE; impact3d itself calls MPI from one thread).
   subroutine par_init()
-    call MPI_Init()
+    integer :: provided
+    call MPI_Init_thread(MPI_THREAD_MULTIPLE, provided)
     comm_world = MPI_COMM_WORLD
     call MPI_Comm_rank(comm_world, my_rank)
     call MPI_Comm_size(comm_world, n_ranks)

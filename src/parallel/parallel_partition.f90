@@ -1,9 +1,11 @@
 !> Zone partitions of the dual graph (zones joined across faces): in
-!> parallel by PT-Scotch through its ParMETIS-compatible interface, each rank
+!> parallel by PT-Scotch (its native distributed-graph interface, in a
+!> deterministic context; its ParMETIS-compatible interface is neither
+!> reproducible nor safe without MPI thread support), each rank
 !> giving its contiguous range of zones and their neighbours; or by serial
 !> METIS on rank 0 (the whole graph on one rank: an opt-in for small meshes).
 module parallel_partition
-  use, intrinsic :: iso_c_binding, only: c_int32_t, c_float, c_ptr, c_null_ptr
+  use, intrinsic :: iso_c_binding, only: c_int32_t, c_double, c_int, c_ptr, c_null_ptr
   use mpi_f08, only: MPI_Comm
   use core_kinds, only: ik, i8
   use parallel_env, only: par_rank, par_size, par_abort, par_comm, par_allgather
@@ -14,6 +16,8 @@ module parallel_partition
 
   integer, parameter :: METIS_NOPTIONS = 40
   integer(c_int32_t), parameter :: METIS_OK = 1
+  !> Largest part over the mean, minus one, asked of PT-Scotch.
+  real(c_double), parameter :: IMBALANCE = 0.02_c_double
 
   interface
     function metis_set_default_options(options) bind(c, name='METIS_SetDefaultOptions') &
@@ -35,19 +39,18 @@ module parallel_partition
       integer(c_int32_t) :: code
     end function metis_part_graph_kway
 
-    ! parallel_scotch.c: PT-Scotch's ParMETIS_V3_PartKway with the
+    ! parallel_scotch.c: PT-Scotch's distributed graph partition, with the
     ! communicator's Fortran handle.
-    function impact3d_part_kway(vtxdist, xadj, adjncy, nparts, tpwgts, ubvec, edgecut, part, &
-        comm) bind(c, name='impact3d_part_kway') result(code)
-      import :: c_int32_t, c_float
+    function impact3d_scotch_part(vtxdist, xadj, adjncy, nparts, imbalance, part, comm) &
+        bind(c, name='impact3d_scotch_part') result(code)
+      import :: c_int32_t, c_double, c_int
       integer(c_int32_t), intent(in) :: vtxdist(*), xadj(*), adjncy(*)
       integer(c_int32_t), intent(in) :: nparts
-      real(c_float), intent(in) :: tpwgts(*), ubvec(*)
-      integer(c_int32_t), intent(out) :: edgecut
+      real(c_double), intent(in) :: imbalance
       integer(c_int32_t), intent(out) :: part(*)
       integer(c_int32_t), intent(in) :: comm
-      integer(c_int32_t) :: code
-    end function impact3d_part_kway
+      integer(c_int) :: code
+    end function impact3d_scotch_part
   end interface
 
 contains
@@ -105,9 +108,7 @@ contains
     character(len=*), intent(in) :: method !< 'scotch' (parallel) or 'metis' (rank 0)
     integer(c_int32_t), allocatable :: vtxdist(:), xadj(:), adjncy(:), cpart(:)
     integer(ik), allocatable :: counts(:, :)
-    real(c_float), allocatable :: tpwgts(:)
-    real(c_float) :: ubvec(1)
-    integer(c_int32_t) :: cut, code
+    integer(c_int) :: code
     integer :: nrank, n, i, k, r
     type(MPI_Comm) :: comm
     nrank = par_size()
@@ -143,13 +144,10 @@ contains
       end do
       xadj(i + 1) = int(k, c_int32_t)
     end do
-    allocate(tpwgts(nrank))
-    tpwgts = 1.0_c_float / real(nrank, c_float)
-    ubvec = 1.03_c_float
     comm = par_comm()
-    code = impact3d_part_kway(vtxdist, xadj, adjncy, int(nrank, c_int32_t), tpwgts, ubvec, &
-        cut, cpart, int(comm%MPI_VAL, c_int32_t))
-    if (code /= METIS_OK) call par_abort('partition: PT-Scotch ParMETIS_V3_PartKway failed', 3)
+    code = impact3d_scotch_part(vtxdist, xadj, adjncy, int(nrank, c_int32_t), IMBALANCE, cpart, &
+        int(comm%MPI_VAL, c_int32_t))
+    if (code /= 0) call par_abort('partition: PT-Scotch failed to partition the zones', 3)
     part = int(cpart(:n), ik)
   end subroutine partition_graph
 
