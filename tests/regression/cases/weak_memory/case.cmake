@@ -4,3 +4,8 @@
 impact3d_regress(parallel/weak_memory "regression;parallel"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/weak_memory
   --mpiexec ${MPIEXEC_EXECUTABLE})
+# The same deck on the same rank count gives the same partition every time,
+# with at most 3% imbalance (partition_twice.py).
+impact3d_regress(parallel/partition_reproducible "regression;parallel"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/partition_twice.py ${EXE}
+  ${WORK}/partition_reproducible --mpiexec ${MPIEXEC_EXECUTABLE})
