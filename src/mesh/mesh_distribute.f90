@@ -13,7 +13,7 @@ module mesh_distribute
   use mesh_geometry, only: HEX_FACE_NODES
   use mesh_local, only: mesh_t
   use mesh_range, only: mesh_range_t
-  use parallel_env, only: par_rank, par_size, par_sum
+  use parallel_env, only: par_rank, par_size, par_sum, par_allgather
   use parallel_route, only: par_route, par_route_free, par_block_owner
 
   use parallel_partition, only: partition_graph
@@ -70,6 +70,7 @@ contains
     call timers%start('partition')
     allocate(part(range%nzone))
     call partition_graph(nbr, part, partitioner)
+    call relabel_parts(part)
     call timers%stop('partition')
 
     call timers%start('migrate')
@@ -117,6 +118,61 @@ contains
     stats%edge_cut = par_sum(int(count(mesh%face_neighbour(:, :mesh%nzone_owned) > &
         mesh%nzone_owned), i8)) / 2
   end subroutine mesh_distribute_build
+
+  !> Renumber the parts so that as many zones as possible stay on the rank
+  !> that generated them: each rank names the part holding most of its
+  !> range (and how many zones), every rank sees all the (count, part, rank)
+  !> triples, and parts go to ranks by decreasing count, first come first
+  !> served; parts left over take the ranks left over in increasing order.
+  !> The same on every rank, and a partition cut in slabs along the ranges
+  !> migrates almost nothing.
+  subroutine relabel_parts(part)
+    integer(ik), intent(inout) :: part(:)
+    integer(ik), allocatable :: counts(:), wish(:, :), label(:)
+    integer, allocatable :: order(:)
+    integer(i8), allocatable :: key(:, :)
+    logical, allocatable :: taken_part(:), taken_rank(:)
+    integer :: nrank, i, r, p, k
+    nrank = par_size()
+    if (nrank == 1) return
+    allocate(counts(0:nrank - 1), wish(2, nrank), label(0:nrank - 1))
+    counts = 0
+    do i = 1, size(part)
+      counts(part(i)) = counts(part(i)) + 1
+    end do
+    p = maxloc(counts, dim=1) - 1
+    call par_allgather([int(p, ik), counts(p)], wish)
+    ! Decreasing count, then increasing rank.
+    allocate(key(2, nrank))
+    do r = 1, nrank
+      key(:, r) = [-int(wish(2, r), i8), int(r, i8)]
+    end do
+    call sort_order(key, order)
+    allocate(taken_part(0:nrank - 1), taken_rank(0:nrank - 1))
+    taken_part = .false.
+    taken_rank = .false.
+    label = -1
+    do k = 1, nrank
+      r = order(k) - 1
+      p = int(wish(1, order(k)))
+      if (wish(2, order(k)) == 0 .or. taken_part(p)) cycle
+      label(p) = r
+      taken_part(p) = .true.
+      taken_rank(r) = .true.
+    end do
+    r = 0
+    do p = 0, nrank - 1
+      if (taken_part(p)) cycle
+      do while (taken_rank(r))
+        r = r + 1
+      end do
+      label(p) = r
+      taken_rank(r) = .true.
+    end do
+    do i = 1, size(part)
+      part(i) = label(part(i))
+    end do
+  end subroutine relabel_parts
 
   !> Face neighbours of every zone of the range (global id and face, 0 on the
   !> boundary). Faces between two zones of the range are matched here, through
