@@ -64,7 +64,7 @@ def render(data, path):
               + " | ".join(p + " s" for p in SETUP_PHASES[:-1])
               + " | edge cut | imbalance % | ghost nodes | set-up sent MB | halo kB/cycle | "
               "halo msgs/cycle |",
-              "|" + "---|" * (14 + len(SETUP_PHASES) - 1)]
+              "|" + "---|" * (13 + len(SETUP_PHASES) - 1)]
     for k in ks:
         for n in ranks:
             r = res.get(f"{k}_{n}")

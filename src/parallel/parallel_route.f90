@@ -9,7 +9,7 @@ module parallel_route
   use parallel_env, only: par_comm, par_size, par_rank
   implicit none
   private
-  public :: par_route, par_route_free, par_block_range, par_block_owner, par_ordered_sum, par_max_i8, par_min_i8, &
+  public :: par_route, par_route_free, par_min_array, par_block_range, par_block_owner, par_ordered_sum, par_max_i8, par_min_i8, &
       par_exscan_i8
 
 contains
@@ -151,6 +151,14 @@ contains
     integer(i8) :: s
     call MPI_Allreduce(x, s, 1, MPI_INTEGER8, MPI_MAX, par_comm())
   end function par_max_i8
+
+  !> In-place minimum of each element over the ranks (one reduction).
+  subroutine par_min_array(x)
+    real(rk), intent(inout) :: x(:)
+    real(rk) :: s(size(x))
+    call MPI_Allreduce(x, s, size(x), MPI_DOUBLE_PRECISION, MPI_MIN, par_comm())
+    x = s
+  end subroutine par_min_array
 
   !> Smallest x over the ranks.
   function par_min_i8(x) result(s)

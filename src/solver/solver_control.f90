@@ -12,7 +12,8 @@ module solver_control
   use hydro_kernels, only: DT_CFL
   use hydro_driver, only: hydro_time_step
   use core_signal, only: signal_caught
-  use parallel_env, only: par_rank, par_size, par_allgather
+  use parallel_env, only: par_rank, par_sum_array
+  use parallel_route, only: par_min_array
   use solver_schedule, only: schedule_t
   implicit none
   private
@@ -62,9 +63,8 @@ contains
     integer, intent(in), optional :: stop_request !< this rank's STOP_* request
     integer, intent(in), optional :: stop_signal !< with STOP_SIGNAL: the signal this rank caught
     type(record_t) :: mine
-    real(rk), allocatable :: reals(:, :)
-    integer(i8), allocatable :: ints(:, :)
-    integer :: zone, reason, z, n, r
+    real(rk) :: first(4), second(1), payload(9), mine_rank
+    integer :: zone, reason, z, n
 
     call hydro_time_step(mesh, state, opt, mine%dt, zone, reason)
     mine%dt_reason = reason
@@ -100,25 +100,39 @@ contains
       mine%dt_zone = mesh%zone_gid(zone)
       mine%dt_position = hex_centroid(state%node_position(:, mesh%zone_node(:, zone)))
     end if
-    allocate(reals(7, par_size()), ints(6, par_size()))
-    call par_allgather([mine%dt, mine%dt_position, mine%fail_position], reals)
-    call par_allgather([mine%dt_zone, mine%dt_reason, mine%fail, mine%fail_id, mine%stop, &
-        mine%stop_signal], ints)
-    do r = 1, par_size()
-      if (reals(1, r) < ctl%dt .or. (reals(1, r) == ctl%dt .and. ints(1, r) < ctl%dt_zone)) then
-        ctl%dt = reals(1, r)
-        ctl%dt_zone = ints(1, r)
-        ctl%dt_reason = int(ints(2, r))
-        ctl%dt_position = reals(2:4, r)
-      end if
-      ctl%stop = max(ctl%stop, int(ints(5, r)))
-      ctl%stop_signal = max(ctl%stop_signal, int(ints(6, r)))
-      if (ints(3, r) /= FAIL_NONE .and. ctl%fail == FAIL_NONE) then
-        ctl%fail = int(ints(3, r))
-        ctl%fail_id = ints(4, r)
-        ctl%fail_position = reals(5:7, r)
-      end if
-    end do
+    ! Three reductions of a few numbers each, whatever the rank count (an
+    ! all-gather of every rank's record cost O(ranks) per rank and cycle).
+    ! Ids, codes and ranks are integers below 2^53: exact as reals.
+    ! 1: the smallest step; the largest stop request and signal (as minima
+    ! of their negatives); the lowest rank that found a failure.
+    mine_rank = huge(1.0_rk)
+    if (mine%fail /= FAIL_NONE) mine_rank = real(par_rank(), rk)
+    first = [mine%dt, -real(mine%stop, rk), -real(mine%stop_signal, rk), mine_rank]
+    call par_min_array(first)
+    ctl%dt = first(1)
+    ctl%stop = -int(first(2))
+    ctl%stop_signal = -int(first(3))
+    ! 2: among the ranks with that step, the lowest zone id.
+    second = huge(1.0_rk)
+    if (mine%dt == ctl%dt) second(1) = real(mine%dt_zone, rk)
+    call par_min_array(second)
+    ! 3: what the rank holding that zone and the failing rank know; every
+    ! other rank adds zeros, so the sums are exact.
+    payload = 0.0_rk
+    if (mine%dt == ctl%dt .and. real(mine%dt_zone, rk) == second(1)) &
+        payload(1:4) = [real(mine%dt_reason, rk), mine%dt_position]
+    if (first(4) == real(par_rank(), rk)) payload(5:9) = [real(mine%fail, rk), &
+        real(mine%fail_id, rk), mine%fail_position]
+    call par_sum_array(payload)
+    ctl%dt_zone = int(second(1), i8)
+    if (second(1) == huge(1.0_rk)) ctl%dt_zone = 0
+    ctl%dt_reason = nint(payload(1))
+    ctl%dt_position = payload(2:4)
+    if (first(4) < huge(1.0_rk)) then
+      ctl%fail = nint(payload(5))
+      ctl%fail_id = nint(payload(6), i8)
+      ctl%fail_position = payload(7:9)
+    end if
   end subroutine control_reduce
 
   !> This rank's clean-stop request after a cycle, for control_reduce: rank 0
