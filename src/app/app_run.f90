@@ -92,6 +92,10 @@ contains
       state%node_contact_gap = 0.0_rk
       call solver_audit(ct, state, timers)
     end if
+    ! The positions at t = 0 (a restart has them from its dump): the dumps'
+    ! displacement.
+    if (.not. allocated(state%node_position_initial)) &
+        state%node_position_initial = state%node_position
     if (len_trim(restart) == 0) then
       allocate(per_material(4, size(config%materials)))
       call history_sums(config, mesh, state, sums, per_material)
