@@ -12,11 +12,11 @@
 !> Used for the history's global sums, which are then bitwise identical on
 !> any rank count and across restarts.
 module core_exact_sum
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_value, ieee_quiet_nan
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use core_kinds, only: rk, i8
   implicit none
   private
-  public :: exact_value, exact_pack, exact_unpack
+  public :: exact_value, exact_pack, exact_unpack, exact_add_all, exact_add_each, exact_merge
 
   !> Limbs: bit 0 of limb 0 is 2^-1126 (below the smallest subnormal's
   !> mantissa once shifted), the largest double's top bit lands in limb 67,
@@ -45,33 +45,89 @@ contains
   subroutine exact_add(acc, x)
     class(exact_sum_t), intent(inout) :: acc
     real(rk), intent(in) :: x
-    integer(i8) :: m, t0, t1, t2
-    integer :: k, l, s
-    if (x == 0.0_rk) return
-    if (.not. ieee_is_finite(x)) then
-      acc%nonfinite = acc%nonfinite + 1
-      return
-    end if
-    ! |x| = m 2^(e - 53), m < 2^53 an integer; its lowest bit is bit k.
-    m = int(scale(abs(fraction(x)), digits(x)), i8)
-    k = exponent(x) - digits(x) + BIAS
-    l = k / 32
-    s = k - 32 * l
-    t0 = iand(ishft(m, s), MASK32)
-    t1 = iand(ishft(m, s - 32), MASK32)
-    t2 = ishft(m, s - 64)
-    if (x > 0.0_rk) then
-      acc%limb(l) = acc%limb(l) + t0
-      acc%limb(l + 1) = acc%limb(l + 1) + t1
-      acc%limb(l + 2) = acc%limb(l + 2) + t2
-    else
-      acc%limb(l) = acc%limb(l) - t0
-      acc%limb(l + 1) = acc%limb(l + 1) - t1
-      acc%limb(l + 2) = acc%limb(l + 2) - t2
-    end if
+    call deposit(acc%limb, acc%nonfinite, x)
     acc%adds = acc%adds + 1
     if (acc%adds >= NORMALISE_EVERY) call acc%normalise()
   end subroutine exact_add
+
+  !> acc = acc + sum(x), exactly (one call for many terms: the history's
+  !> sums over zones and nodes).
+  subroutine exact_add_all(acc, x)
+    type(exact_sum_t), intent(inout) :: acc
+    real(rk), intent(in) :: x(:)
+    integer :: i, first, last
+    ! In runs that leave the limbs room for the carries.
+    do first = 1, size(x), NORMALISE_EVERY
+      last = min(size(x), first + NORMALISE_EVERY - 1)
+      if (acc%adds > NORMALISE_EVERY - (last - first + 1)) call acc%normalise()
+      do i = first, last
+        call deposit(acc%limb, acc%nonfinite, x(i))
+      end do
+      acc%adds = acc%adds + (last - first + 1)
+    end do
+  end subroutine exact_add_all
+
+  !> acc = acc + other, exactly (the sum of both sums' terms).
+  subroutine exact_merge(acc, other)
+    type(exact_sum_t), intent(inout) :: acc
+    type(exact_sum_t), intent(in) :: other
+    type(exact_sum_t) :: b
+    b = other
+    call b%normalise()
+    call acc%normalise()
+    acc%limb = acc%limb + b%limb
+    acc%nonfinite = acc%nonfinite + b%nonfinite
+    acc%adds = 1
+  end subroutine exact_merge
+
+  !> accs(which(i)) = accs(which(i)) + x(i) for every i, exactly.
+  subroutine exact_add_each(accs, which, x)
+    type(exact_sum_t), intent(inout) :: accs(:)
+    integer, intent(in) :: which(:)
+    real(rk), intent(in) :: x(:)
+    integer :: i, j
+    do i = 1, size(x)
+      j = which(i)
+      call deposit(accs(j)%limb, accs(j)%nonfinite, x(i))
+      accs(j)%adds = accs(j)%adds + 1
+      if (accs(j)%adds >= NORMALISE_EVERY) call accs(j)%normalise()
+    end do
+  end subroutine exact_add_each
+
+  !> Add x to the limbs, exactly: from its bits, |x| = m 2^(k - BIAS) with m
+  !> < 2^53 (the hidden bit set for a normal number; a subnormal has the
+  !> exponent field 0 and the scale of the field 1). m's three 32-bit pieces
+  !> at bit k go into three consecutive limbs.
+  pure subroutine deposit(limb, nonfinite, x)
+    integer(i8), intent(inout) :: limb(0:EXACT_LIMBS - 1)
+    integer(i8), intent(inout) :: nonfinite
+    real(rk), intent(in) :: x
+    integer(i8), parameter :: FIELD = 2047_i8, MANTISSA = 4503599627370495_i8, &
+        HIDDEN = 4503599627370496_i8
+    integer(i8) :: bits, e, m, t0, t1, t2, sg
+    integer :: k, l, s
+    bits = transfer(x, bits)
+    e = iand(ishft(bits, -52), FIELD)
+    if (e == FIELD) then
+      nonfinite = nonfinite + 1
+      return
+    end if
+    m = iand(bits, MANTISSA)
+    if (e > 0) m = ior(m, HIDDEN)
+    if (m == 0) return
+    ! The value of the mantissa's bit 0 is 2^(max(e, 1) - 1075) = 2^(k - BIAS).
+    k = int(max(e, 1_i8)) - 1075 + BIAS
+    l = ishft(k, -5)
+    s = k - 32 * l
+    ! Shifts below 64 only (0 <= s < 32); sign +-1 without a branch.
+    t0 = iand(shiftl(m, s), MASK32)
+    t1 = iand(shiftr(m, 32 - s), MASK32)
+    t2 = shiftr(shiftr(m, 32), 32 - s)
+    sg = 1_i8 + 2_i8 * shifta(bits, 63)
+    limb(l) = limb(l) + sg * t0
+    limb(l + 1) = limb(l + 1) + sg * t1
+    limb(l + 2) = limb(l + 2) + sg * t2
+  end subroutine deposit
 
   !> Carry propagation: limbs 0 .. EXACT_LIMBS-2 in [0, 2^32), the top one
   !> signed (the sign of the sum). Same integer.

@@ -8,7 +8,8 @@ module io_history
   use core_kinds, only: rk, i8
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
-  use core_exact_sum, only: exact_sum_t, exact_value
+  use core_exact_sum, only: exact_sum_t, exact_value, exact_add_all, exact_add_each, &
+      exact_merge
   use contact_enforce, only: contact_t, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
   use parallel_env, only: par_rank, par_sum_exact
   use io_deck, only: config_t
@@ -75,12 +76,12 @@ contains
   end subroutine history_write
 
   !> The history's global sums, exact (core_exact_sum) so that they are
-  !> bitwise the same on any rank count: sums = internal energy, kinetic
-  !> energy, momentum x, y, z (owned zones and nodes; the terms of
-  !> hydro_energies); per_material(:, m) = internal, kinetic (each corner's
-  !> eighth of the zone mass at its node's velocity), plastic work,
-  !> hourglass work of the owned zones of material m (the terms of
-  !> hydro_material_energies). Collective.
+  !> bitwise the same on any rank count: per_material(:, m) = internal,
+  !> kinetic (each corner's eighth of the zone mass at its node's velocity),
+  !> plastic work, hourglass work of the owned zones of material m (the
+  !> terms of hydro_material_energies); sums = internal and kinetic energy
+  !> (the exact sums of the materials' terms), momentum x, y, z (owned
+  !> nodes). Collective.
   subroutine history_sums(config, mesh, state, sums, per_material)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(in) :: mesh
@@ -88,33 +89,48 @@ contains
     real(rk), intent(out) :: sums(5)
     real(rk), intent(out) :: per_material(:, :) !< (4, nmaterial)
     type(exact_sum_t), allocatable :: acc(:)
-    integer :: z, n, m, k, nm
+    integer :: z, n, m, k, nm, nzo, nno
     real(rk) :: v2
+    real(rk), allocatable :: term(:), speed2(:)
+    integer, allocatable :: which(:)
     nm = size(config%materials)
-    allocate(acc(5 + 4 * nm))
+    nzo = mesh%nzone_owned
+    nno = mesh%nnode_owned
+    allocate(acc(5 + 4 * nm), term(max(nzo, nno)), which(nzo), speed2(mesh%nnode))
     associate(v => state%node_velocity, mass => state%node_mass)
-      do z = 1, mesh%nzone_owned
-        call acc(1)%add(state%zone_mass(z) * state%zone_energy(z))
+      ! Per material: internal energy, kinetic energy (each corner's eighth
+      ! of the zone mass at its node's velocity), plastic and hourglass work.
+      do n = 1, mesh%nnode
+        speed2(n) = v(1, n) * v(1, n) + v(2, n) * v(2, n) + v(3, n) * v(3, n)
       end do
-      do n = 1, mesh%nnode_owned
-        call acc(2)%add(0.5_rk * mass(n) * (v(1, n) * v(1, n) + v(2, n) * v(2, n) &
-            + v(3, n) * v(3, n)))
-        call acc(3)%add(mass(n) * v(1, n))
-        call acc(4)%add(mass(n) * v(2, n))
-        call acc(5)%add(mass(n) * v(3, n))
+      do z = 1, nzo
+        which(z) = 5 + 4 * (config%blocks(mesh%zone_block(z))%material - 1)
+        term(z) = state%zone_mass(z) * state%zone_energy(z)
       end do
-      do z = 1, mesh%nzone_owned
-        m = 5 + 4 * (config%blocks(mesh%zone_block(z))%material - 1)
-        call acc(m + 1)%add(state%zone_mass(z) * state%zone_energy(z))
+      call exact_add_each(acc, which + 1, term(1:nzo))
+      do z = 1, nzo
         v2 = 0.0_rk
         do k = 1, 8
-          n = mesh%zone_node(k, z)
-          v2 = v2 + (v(1, n) * v(1, n) + v(2, n) * v(2, n) + v(3, n) * v(3, n))
+          v2 = v2 + speed2(mesh%zone_node(k, z))
         end do
-        call acc(m + 2)%add(0.0625_rk * state%zone_mass(z) * v2)
-        if (allocated(state%zone_plastic_work)) call acc(m + 3)%add(state%zone_plastic_work(z))
-        if (allocated(state%zone_hourglass_work)) &
-            call acc(m + 4)%add(state%zone_hourglass_work(z))
+        term(z) = 0.0625_rk * state%zone_mass(z) * v2
+      end do
+      call exact_add_each(acc, which + 2, term(1:nzo))
+      if (allocated(state%zone_plastic_work)) &
+          call exact_add_each(acc, which + 3, state%zone_plastic_work(1:nzo))
+      if (allocated(state%zone_hourglass_work)) &
+          call exact_add_each(acc, which + 4, state%zone_hourglass_work(1:nzo))
+      ! The totals of internal and kinetic energy are the materials' (exact
+      ! sums add exactly); momentum over the owned nodes.
+      do m = 1, nm
+        call exact_merge(acc(1), acc(5 + 4 * (m - 1) + 1))
+        call exact_merge(acc(2), acc(5 + 4 * (m - 1) + 2))
+      end do
+      do k = 1, 3
+        do n = 1, nno
+          term(n) = mass(n) * v(k, n)
+        end do
+        call exact_add_all(acc(2 + k), term(1:nno))
       end do
     end associate
     call par_sum_exact(acc)
