@@ -58,6 +58,7 @@ module io_config
     integer :: max_cycles = 10000000
     real(rk) :: wall_limit = 0.0_rk !< wall-clock seconds; stop cleanly before (0 = none)
     character(len=PATH_LEN) :: stop_file = 'STOP' !< its existence stops the run cleanly
+    character(len=8) :: partitioner = 'scotch' !< 'scotch' (parallel) or 'metis' (rank 0)
     integer :: stop_check_every = 10 !< cycles between looks for the stop file
     integer :: fault_cycle = 0 !< testing aid: inject a fault at this cycle (0 = never)
     character(len=8) :: fault_kind = 'nan' !< 'nan' (NaN energy) or 'tangle' (mirror zone 1)
@@ -77,7 +78,7 @@ module io_config
   end type config_t
 
   !> &control: the run (end, steps, stops, units).
-  type(key_t), parameter, public :: CONTROL_KEYS(17) = [ &
+  type(key_t), parameter, public :: CONTROL_KEYS(18) = [ &
       key_t("title", "c", "''", "", &
       "run title (dumps, status)"), &
       key_t("t_end", "r", "required", "time", &
@@ -111,7 +112,9 @@ module io_config
       key_t("stop_check_every", "i", "10", "cycles", &
       "cycles between looks for the stop file"), &
       key_t("units", "c", "'cm-g-us-mbar'", "", &
-      "unit system of the deck: 'cm-g-us-mbar', 'si' or 'none'")]
+      "unit system of the deck: 'cm-g-us-mbar', 'si' or 'none'"), &
+      key_t("partitioner", "c", "'scotch'", "", &
+      "zone partition: 'scotch' (PT-Scotch, in parallel) or 'metis' (serial METIS on rank 0)")]
 
   !> &output: dumps, history and status lines.
   type(key_t), parameter, public :: OUTPUT_KEYS(6) = [ &
@@ -159,9 +162,10 @@ contains
     real(rk) :: wall_limit
     character(len=256) :: msg
     character(len=16) :: units
+    character(len=8) :: partitioner
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
         dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind, wall_limit, stop_file, &
-        stop_check_every, units
+        stop_check_every, units, partitioner
 
     title = config%title
     t_end = config%t_end
@@ -174,6 +178,7 @@ contains
     deck_version = DECK_FORMAT_VERSION
     restart = ''
     units = config%units
+    partitioner = config%partitioner
     cfl = config%hydro%cfl
     dt_initial = config%hydro%dt_initial
     dt_max = config%hydro%dt_max
@@ -207,6 +212,10 @@ contains
     if (.not. units_valid(to_lower(units))) call status%add('&control: units: '''// &
         trim(units)//''' is not a unit system (valid: '//UNITS_LIST//')')
     config%units = to_lower(units)
+    partitioner = to_lower(partitioner)
+    if (partitioner /= 'scotch' .and. partitioner /= 'metis') call status%add('&control: '// &
+        'partitioner: '''//trim(partitioner)//''' is not a partitioner (valid: scotch, metis)')
+    config%partitioner = partitioner
     if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
         'in (0, 1]')
     if (dt_initial < 0.0_rk) call status%add('&control: dt_initial: must be >= 0 '// &
