@@ -12,8 +12,11 @@ Usage:
   plot_history.py FILE [FILE ...] -y COLUMN [COLUMN ...] [-x time] [-o plot.png]
                   [--logy] [--title TEXT] [--list]
 
-Every COLUMN is plotted from every FILE that has it, against -x (default
-'time'); a COLUMN (or the -x column) that none of the files has is an error
+Every COLUMN is plotted from every FILE that has it, against -x (default:
+the file's time column, 'time' in history.txt, 'time [us]' or the like in a
+probe file). A column is named with or without its unit suffix: -y
+velocity_z finds a probe's 'velocity_z [cm/us]'. A COLUMN (or the -x
+column) that none of the files has is an error
 (exit 2) naming the file(s), the column, the closest name and the valid ones.
 --list prints each file's columns. Examples:
 
@@ -28,47 +31,28 @@ import sys
 
 import numpy as np
 
+from impact3d_tools import history
+
 
 class InputError(Exception):
     """A problem with the command line or a file: reported, exit 2."""
 
 
 def read_table(path):
-    """Column names and a dict name -> float array of a history or CSV file."""
+    """Column names and the table (impact3d_tools.history.History) of a
+    history or probe file."""
     try:
-        with open(path) as f:
-            lines = [line for line in f if line.strip()]
+        table = history.read_table(path)
     except OSError as e:
         raise InputError("%s: cannot read it: %s" % (path, e.strerror))
-    if not lines:
-        raise InputError("%s: the file is empty (expected a header line)" % path)
-    head = lines[0].strip()
-    if head.startswith("#"):
-        names = head[1:].split()
-        split = str.split
-    else:
-        names = [n.strip() for n in head.split(",")]
-        split = lambda line: line.split(",")
-    rows = []
-    for k, line in enumerate(lines[1:], start=2):
-        if line.lstrip().startswith("#"):
-            continue
-        fields = split(line.strip())
-        if len(fields) != len(names):
-            raise InputError("%s: line %d has %d values, the header names %d columns"
-                             % (path, k, len(fields), len(names)))
-        try:
-            rows.append([float(v) for v in fields])
-        except ValueError:
-            raise InputError("%s: line %d: a value is not a number: %s"
-                             % (path, k, line.strip()[:80]))
-    data = np.array(rows, dtype=float).reshape(-1, len(names))
-    return names, {n: data[:, i] for i, n in enumerate(names)}
+    except ValueError as e:
+        raise InputError(str(e))
+    return table.names, table
 
 
 def unknown_column(column, files, tables):
-    names = sorted({n for f in files for n in tables[f][0]})
-    close = difflib.get_close_matches(column, names, n=1)
+    names = sorted({history.base_name(n) for f in files for n in tables[f][0]})
+    close = difflib.get_close_matches(history.base_name(column), names, n=1)
     hint = "; did you mean '%s'?" % close[0] if close else ""
     return ("%s: no column '%s'%s (columns: %s)"
             % (", ".join(files), column, hint, ", ".join(tables[files[0]][0])))
@@ -78,7 +62,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("files", nargs="+", help="history.txt or probe CSV files")
     ap.add_argument("-y", nargs="+", default=[], metavar="COLUMN", help="columns to plot")
-    ap.add_argument("-x", default="time", metavar="COLUMN", help="abscissa (default time)")
+    ap.add_argument("-x", default=None, metavar="COLUMN",
+                    help="abscissa (default: the file's time column, 'time' or 'time [unit]')")
     ap.add_argument("-o", "--output", default="history.png", help="PNG file (default history.png)")
     ap.add_argument("--logy", action="store_true", help="logarithmic y axis (of |value|)")
     ap.add_argument("--title", default=None)
@@ -93,7 +78,10 @@ def main(argv=None):
         if not a.y:
             raise InputError("no column to plot: give -y COLUMN ... (--list shows them)")
         for f in a.files:
-            if a.x not in tables[f][1]:
+            if a.x is None and tables[f][1].time_name() is None:
+                raise InputError("%s: no time column ('time' or 'time [unit]'; columns: %s): "
+                                 "give -x COLUMN" % (f, ", ".join(tables[f][0])))
+            if a.x is not None and a.x not in tables[f][1]:
                 raise InputError(unknown_column(a.x, [f], tables) + " [the -x column]")
         for c in a.y:
             if not any(c in tables[f][1] for f in a.files):
@@ -108,15 +96,19 @@ def main(argv=None):
 
     fig, ax = plt.subplots(figsize=(8, 5))
     several = len(a.files) > 1
+    xlabel = None
     for f in a.files:
         cols = tables[f][1]
+        xname = cols.name_of(a.x) if a.x is not None else cols.time_name()
+        xlabel = xlabel or xname
         for c in a.y:
             if c not in cols:
                 continue
             y = np.abs(cols[c]) if a.logy else cols[c]
-            label = "%s: %s" % (os.path.basename(f), c) if several else c
-            ax.plot(cols[a.x], y, label=label)
-    ax.set_xlabel(a.x)
+            name = cols.name_of(c)
+            label = "%s: %s" % (os.path.basename(f), name) if several else name
+            ax.plot(cols[xname], y, label=label)
+    ax.set_xlabel(xlabel)
     if a.logy:
         ax.set_yscale("log")
     ax.grid(True, alpha=0.3)

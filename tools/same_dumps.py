@@ -1,13 +1,18 @@
 #!/usr/bin/python3
 """Compare two trees of impact3d dumps bitwise (h5diff, /run excluded).
 
-Usage: same_dumps.py BEFORE_DIR AFTER_DIR
+Usage: same_dumps.py BEFORE_DIR AFTER_DIR [--added PATH ...]
 
 Every *.h5 file under BEFORE_DIR is compared with the file at the same
 relative path under AFTER_DIR by `h5diff --exclude-path /run` (the /run
 group holds provenance and timings, which differ from run to run). Prints
 one line per difference, files present on one side only, and a summary;
 exit code 0 when every common dump is identical and nothing is missing.
+
+--added PATH ... leaves datasets out of the comparison (passed to h5diff as
+--exclude-path): fields a change adds, which BEFORE's dumps do not have,
+e.g. --added /nodes/displacement /zones/von_mises_stress
+/restart/initial_position.
 
 Used to show that a change leaves results bitwise unchanged: keep the work
 directories of the regression tests from before the change (e.g. a copy of
@@ -30,15 +35,23 @@ def dumps_under(root):
 
 
 def main():
-    if len(sys.argv) != 3:
+    args = sys.argv[1:]
+    added = []
+    if "--added" in args:
+        k = args.index("--added")
+        added, args = args[k + 1:], args[:k]
+    if len(args) != 2 or not added and "--added" in sys.argv:
         raise SystemExit(__doc__)
-    before, after = sys.argv[1], sys.argv[2]
+    before, after = args
+    excluded = ["--exclude-path", "/run"]
+    for path in added:
+        excluded += ["--exclude-path", path]
     old = dumps_under(before)
     new = dumps_under(after)
     common = sorted(old & new)
     differ = []
     for rel in common:
-        proc = subprocess.run(["h5diff", "--exclude-path", "/run", os.path.join(before, rel),
+        proc = subprocess.run(["h5diff"] + excluded + [os.path.join(before, rel),
                                os.path.join(after, rel)], capture_output=True, text=True)
         if proc.returncode != 0:
             differ.append(rel)

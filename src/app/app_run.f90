@@ -9,7 +9,7 @@ module app_run
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
   use hydro_boundary, only: boundary_t
-  use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_energies
+  use hydro_driver, only: material_zones_t, hydro_zone_update
   use contact_enforce, only: contact_t, contact_report
   use solver_step, only: solver_cycle, solver_audit
   use solver_schedule, only: schedule_t
@@ -19,12 +19,11 @@ module app_run
   use solver_eta, only: eta_t
   use io_deck, only: config_t, deck_read, output_directory_create
   use io_h5, only: h5_library_open, h5_library_close
-  use io_history, only: history_open
+  use io_history, only: history_open, history_sums
   use io_probe, only: probes_t, probe_open, probe_sample
   use io_output, only: output_dump, output_history, status_line, input_errors_report, &
       setup_echo, failure_message, max_cycles_message, stop_message, audit_stop_message, &
       timing_report, halo_report
-  use parallel_env, only: par_sum
   use app_setup, only: setup_run
   implicit none
   private
@@ -54,6 +53,7 @@ contains
     character(len=400) :: msg
     integer :: bad, ierr
     real(rk) :: wall_begin, sums(5)
+    real(rk), allocatable :: per_material(:, :)
 
     ! The wall-time limit counts from here: set-up and the restart read included.
     wall_begin = wall_time()
@@ -98,9 +98,14 @@ contains
       state%node_contact_gap = 0.0_rk
       call solver_audit(ct, state, timers)
     end if
+    ! The positions at t = 0 (a restart has them from its dump): the dumps'
+    ! displacement.
+    if (.not. allocated(state%node_position_initial)) &
+        state%node_position_initial = state%node_position
     if (len_trim(restart) == 0) then
-      call hydro_energies(mesh, state, sums)
-      state%energy_initial = par_sum(sums(1)) + par_sum(sums(2))
+      allocate(per_material(4, size(config%materials)))
+      call history_sums(config, mesh, state, sums, per_material)
+      state%energy_initial = sums(1) + sums(2)
     end if
     call history_open(config, state, len_trim(restart) > 0)
     call probe_open(probes, state, len_trim(restart) > 0)
@@ -225,12 +230,13 @@ contains
         wall_dump = max(wall_dump, timers%last('dumps'))
       end if
     end do
-    if (code /= EXIT_OK) return
-    call output_dump(config, mesh, state, 'final', wall_start, timers, ok)
-    if (.not. ok) then
-      code = EXIT_FAILURE
-      return
+    ! A clean stop (max_cycles, STOP file, wall-time limit, a signal) reports
+    ! its timing like a run that reached t_end; a failure does not.
+    if (code == EXIT_OK) then
+      call output_dump(config, mesh, state, 'final', wall_start, timers, ok)
+      if (.not. ok) code = EXIT_FAILURE
     end if
+    if (code /= EXIT_OK .and. code /= EXIT_INCOMPLETE) return
     if (ct%npair > 0) call contact_report(ct, wall_time() - wall_start - &
         timers%total('dumps'))
     call halo_report(mesh, state%cycle)

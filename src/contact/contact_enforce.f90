@@ -42,6 +42,7 @@
 !>
 module contact_enforce
   use core_kinds, only: rk, ik, i8
+  use core_exact_sum, only: exact_sum_t
   use core_status, only: status_t
   use core_sort, only: sort_values, sort_unique
   use, intrinsic :: iso_fortran_env, only: output_unit
@@ -482,26 +483,25 @@ contains
 
 
   !> After the velocity update: the work of the contact forces over the step
-  !> on the owned nodes (local sum; the caller reduces it).
+  !> on the owned nodes, its terms added exactly (core_exact_sum; the caller
+  !> reduces it), and per interface in work_step.
   subroutine contact_work_update(ct, v_old, v_new, dt, work)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: v_old(:, :), v_new(:, :)
     real(rk), intent(in) :: dt
-    real(rk), intent(out) :: work !< this rank's contact work of the step
+    type(exact_sum_t), intent(inout) :: work !< + this rank's terms of the step's contact work
     integer :: i, n, k
-    work = 0.0_rk
     do i = 1, ct%nown
       n = ct%own_local(i)
-      work = work + 0.5_rk * dt * dot_product(ct%fc(:, i), &
-          v_old(:, n) + v_new(:, n))
+      call work%add(0.5_rk * dt * dot_product(ct%fc(:, i), v_old(:, n) + v_new(:, n)))
     end do
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        p%work_step = 0.0_rk
+        p%work_step = exact_sum_t()
         do i = 1, ct%nown
           n = ct%own_local(i)
-          p%work_step = p%work_step + 0.5_rk * dt * dot_product(p%fc_own(:, i), &
-              v_old(:, n) + v_new(:, n))
+          call p%work_step%add(0.5_rk * dt * dot_product(p%fc_own(:, i), &
+              v_old(:, n) + v_new(:, n)))
         end do
       end associate
     end do

@@ -18,6 +18,7 @@
 !> the side-b columns).
 module contact_monitor
   use core_kinds, only: rk, ik, i8
+  use core_exact_sum, only: exact_sum_t, exact_value
   use core_status, only: status_t
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use mesh_global, only: global_mesh_t
@@ -25,7 +26,7 @@ module contact_monitor
   use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
   use contact_state, only: METHOD_DAM, METHOD_DLM, contact_spec_t, interface_t, contact_t, &
       initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT
-  use parallel_env, only: par_sum_array, par_rank, par_size, par_allgather
+  use parallel_env, only: par_sum_array, par_sum_exact, par_rank, par_size, par_allgather
   implicit none
   private
   public :: contact_initial, contact_audit_run, contact_step_end
@@ -431,26 +432,31 @@ contains
   !> Collective.
   subroutine contact_step_end(ct)
     type(contact_t), intent(inout) :: ct
-    real(rk), allocatable :: sums(:)
-    integer :: k, i, m
+    type(exact_sum_t), allocatable :: sums(:)
+    integer :: k, i, m, j
     if (ct%npair == 0) return
+    ! Exact sums (core_exact_sum): the columns do not depend on the rank count.
     allocate(sums(4 * ct%npair))
-    sums = 0.0_rk
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
         ! A reverse pass's surface a is its deck interface's surface b.
         do i = 1, ct%nown
-          if (p%own_in_a(i) .eqv. p%mirror_of == 0) sums(4 * k - 3:4 * k - 1) = &
-              sums(4 * k - 3:4 * k - 1) + p%fc_own(:, i)
+          if (p%own_in_a(i) .eqv. p%mirror_of == 0) then
+            do j = 1, 3
+              call sums(4 * k - 4 + j)%add(p%fc_own(j, i))
+            end do
+          end if
         end do
         sums(4 * k) = p%work_step
       end associate
     end do
-    call par_sum_array(sums)
+    call par_sum_exact(sums)
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        p%work = p%work + sums(4 * k)
-        p%diag(DIAG_FORCE:DIAG_FORCE + 2) = sums(4 * k - 3:4 * k - 1)
+        p%work = p%work + exact_value(sums(4 * k))
+        do j = 1, 3
+          p%diag(DIAG_FORCE + j - 1) = exact_value(sums(4 * k - 4 + j))
+        end do
         p%diag(DIAG_WORK) = p%work
       end associate
     end do

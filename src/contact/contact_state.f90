@@ -5,6 +5,7 @@
 !> migration) and contact_enforce (DAM, DLM). No MPI, no I/O.
 module contact_state
   use core_kinds, only: rk, ik, i8
+  use core_exact_sum, only: exact_sum_t
   use mesh_global, only: NAME_LEN
   use contact_surface, only: contact_surface_t, nodal_areas
   use contact_geometry, only: segment_facets, triangle_unit_normal, triangle_vector_area, &
@@ -164,7 +165,7 @@ module contact_state
     real(rk), allocatable :: lsag_a(:), lsag_b(:) !< the same on the local surfaces a, b
     logical, allocatable :: own_in_a(:) !< (nown) owned node on surface a
     real(rk), allocatable :: fc_own(:, :) !< (3, nown) the interface's force (corrector)
-    real(rk) :: work_step = 0.0_rk !< this rank's contact work of the interface, last step
+    type(exact_sum_t) :: work_step !< this rank's terms of the interface's contact work, last step
     real(rk) :: work = 0.0_rk !< contact work of the interface so far (all ranks)
     integer(i8) :: warn_cycle = -1000000000_i8 !< cycle of the last audit warning (none yet)
     integer :: warn_skipped = 0 !< violations since that warning

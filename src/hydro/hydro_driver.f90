@@ -3,6 +3,7 @@
 !> (which stages, in which order, and where contact goes) is in src/app.
 module hydro_driver
   use core_kinds, only: rk
+  use core_exact_sum, only: exact_sum_t
   use mesh_local, only: mesh_t
   use material_table, only: material_t, material_eos, material_flow, STRENGTH_NONE, &
       EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN
@@ -210,15 +211,15 @@ contains
         state%zone_energy_old, state%zone_mass, step, state%zone_energy)
   end subroutine hydro_energy_update
 
-  !> v_new = v_old + step F / M on owned nodes, constrained; returns the
-  !> boundary work of the step for the final update (diagnostic).
+  !> v_new = v_old + step F / M on owned nodes, constrained; adds the terms of
+  !> the boundary work of the step to work (diagnostic; for the final update).
   subroutine hydro_velocity_update(mesh, state, bc, step, v_new, work)
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(inout) :: state
     type(boundary_t), intent(in) :: bc
     real(rk), intent(in) :: step
     real(rk), intent(inout) :: v_new(:, :)
-    real(rk), intent(out) :: work
+    type(exact_sum_t), intent(inout), optional :: work !< + its terms, exactly (core_exact_sum)
     integer :: n, k
     real(rk) :: vavg(3)
     call node_velocity_step(mesh%nnode_owned, state%node_velocity_old, state%node_force, &
@@ -226,17 +227,17 @@ contains
     call boundary_constrain(bc, v_new, .true.)
     call boundary_wall(bc, state%node_position_old, state%node_velocity_old, v_new, step)
     ! Work of the constraint and wall reactions and of the applied pressure.
-    work = 0.0_rk
+    if (.not. present(work)) return
     do k = 1, bc%nkinematic
       n = bc%kinematic_node(k)
       vavg = 0.5_rk * (state%node_velocity_old(:, n) + v_new(:, n))
-      work = work + dot_product(state%node_mass(n) * (v_new(:, n) - &
-          state%node_velocity_old(:, n)) - step * state%node_force(:, n), vavg)
+      call work%add(dot_product(state%node_mass(n) * (v_new(:, n) - &
+          state%node_velocity_old(:, n)) - step * state%node_force(:, n), vavg))
     end do
     do k = 1, bc%npnode
       n = bc%pnode(k)
       vavg = 0.5_rk * (state%node_velocity_old(:, n) + v_new(:, n))
-      work = work + step * dot_product(bc%pnode_force(:, k), vavg)
+      call work%add(step * dot_product(bc%pnode_force(:, k), vavg))
     end do
   end subroutine hydro_velocity_update
 

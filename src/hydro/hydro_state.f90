@@ -33,6 +33,8 @@ module hydro_state
   !> The fields. Nodes 1..nnode_owned and zones 1..nzone_owned are owned.
   type, public :: state_t
     real(rk), allocatable :: node_position(:, :) !< (3, nnode) x^n
+    !> (3, nnode) x at t = 0 (the dumps' displacement; restart dumps carry it)
+    real(rk), allocatable :: node_position_initial(:, :)
     real(rk), allocatable :: node_velocity(:, :) !< (3, nnode) v^n
     real(rk), allocatable :: node_mass(:) !< fixed nodal mass
     real(rk), allocatable :: node_force(:, :) !< (3, nnode) force of the stage

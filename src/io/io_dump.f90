@@ -109,6 +109,15 @@ contains
         e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call units_of('/nodes/velocity', 'velocity')
+    ! Derived: displacement from the positions at t = 0.
+    if (allocated(state%node_position_initial)) then
+      call mesh%node_io%to_block(state%node_position(:, 1:nno) - &
+          state%node_position_initial(:, 1:nno), nblock3)
+      call h5_write_real_rows(file, '/nodes/displacement', nblock3, mesh%nnode_global, &
+          node_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call units_of('/nodes/displacement', 'length')
+    end if
     call mesh%node_io%to_block(reshape(state%node_mass(1:nno), [1, nno]), nblock1)
     call h5_write_real_vector(file, '/nodes/mass', nblock1(1, :), mesh%nnode_global, &
         node_first, e, msg)
@@ -142,6 +151,10 @@ contains
       call units_of('/zones/deviatoric_stress', 'pressure')
       deallocate(zblock)
       allocate(zblock(1, mesh%zone_io%nblock))
+      ! Derived: the von Mises stress sqrt(3/2 s:s) (0 in zones of materials
+      ! without strength, whose deviatoric stress is 0).
+      call zone_field('/zones/von_mises_stress', von_mises(state%zone_stress(:, 1:nzo)), &
+          'pressure')
     end if
 
     ! Restart-only state.
@@ -158,6 +171,13 @@ contains
       call h5_write_real_rows(file, '/restart/hourglass_stress', zblock, mesh%nzone_global, &
           zone_first, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
+    end if
+    if (allocated(state%node_position_initial)) then
+      call mesh%node_io%to_block(state%node_position_initial(:, 1:nno), nblock3)
+      call h5_write_real_rows(file, '/restart/initial_position', nblock3, mesh%nnode_global, &
+          node_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call units_of('/restart/initial_position', 'length')
     end if
 
     ! Energy bookkeeping per zone (the history's per-material columns).
@@ -245,6 +265,18 @@ contains
 
   end subroutine dump_write
 
+  !> The von Mises stress sqrt(3/2 s:s) of deviatoric stresses s (xx, yy, zz,
+  !> xy, yz, zx; the formula of the strength update's equivalent stress).
+  pure function von_mises(s) result(vm)
+    real(rk), intent(in) :: s(:, :) !< (6, n)
+    real(rk) :: vm(size(s, 2))
+    integer :: z
+    do z = 1, size(s, 2)
+      vm(z) = sqrt(1.5_rk * (s(1, z)**2 + s(2, z)**2 + s(3, z)**2 &
+          + 2.0_rk * (s(4, z)**2 + s(5, z)**2 + s(6, z)**2)))
+    end do
+  end function von_mises
+
   !> XDMF sidecar for one dump, so that ParaView and VisIt open it directly.
   subroutine write_sidecar(path, title, nnode, nzone, time, strength, contact)
     character(len=*), intent(in) :: path, title
@@ -293,6 +325,10 @@ contains
     write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//' 3" NumberType="Float" '// &
         'Precision="8" Format="HDF">'//h5file//':/nodes/velocity</DataItem>'
     write(unit, '(a)') '   </Attribute>'
+    write(unit, '(a)') '   <Attribute Name="displacement" AttributeType="Vector" Center="Node">'
+    write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//' 3" NumberType="Float" '// &
+        'Precision="8" Format="HDF">'//h5file//':/nodes/displacement</DataItem>'
+    write(unit, '(a)') '   </Attribute>'
     if (contact) then
       write(unit, '(a)') '   <Attribute Name="contact_gap" AttributeType="Scalar" Center="Node">'
       write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//'" NumberType="Float" '// &
@@ -320,6 +356,11 @@ contains
           'Center="Cell">'
       write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//' 6" NumberType="Float" '// &
           'Precision="8" Format="HDF">'//h5file//':/zones/deviatoric_stress</DataItem>'
+      write(unit, '(a)') '   </Attribute>'
+      write(unit, '(a)') '   <Attribute Name="von_mises_stress" AttributeType="Scalar" '// &
+          'Center="Cell">'
+      write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//'" NumberType="Float" '// &
+          'Precision="8" Format="HDF">'//h5file//':/zones/von_mises_stress</DataItem>'
       write(unit, '(a)') '   </Attribute>'
     end if
     write(unit, '(a)') '  </Grid>'
@@ -496,6 +537,7 @@ contains
     real(rk), allocatable :: nblock3(:, :), nblock1(:, :), zblock(:, :), zlocal(:, :)
     real(rk), allocatable :: zlocal_nodes(:, :)
     real(rk) :: rcycle
+    logical :: there
 
     msg = ''
     ierr = 0
@@ -551,6 +593,17 @@ contains
     call h5_read_attr_real(file, '/run', 'energy_initial', state%energy_initial, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
 
+    ! The positions at t = 0: the dump's, or for a dump written before they
+    ! were kept, the deck's mesh (state%node_position before the read).
+    if (.not. allocated(state%node_position_initial)) &
+        allocate(state%node_position_initial, source=state%node_position)
+    call h5_path_exists(file, '/restart/initial_position', there, e, msg)
+    if (e /= 0 .and. ierr == 0) ierr = e
+    if (e == 0 .and. there) then
+      call h5_read_real_rows(file, '/restart/initial_position', nblock3, node_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call mesh%node_io%from_block(nblock3, state%node_position_initial(:, 1:nno))
+    end if
     call h5_read_real_rows(file, '/mesh/coordinates', nblock3, node_first, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call mesh%node_io%from_block(nblock3, state%node_position(:, 1:nno))
@@ -595,6 +648,7 @@ contains
     if (.not. agreed()) return
     call mesh%node_halo%exchange(state%node_position)
     call mesh%node_halo%exchange(state%node_velocity)
+    call mesh%node_halo%exchange(state%node_position_initial)
 
   contains
 

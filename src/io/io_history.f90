@@ -8,48 +8,31 @@ module io_history
   use core_kinds, only: rk, i8
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
-  use hydro_driver, only: hydro_energies, hydro_material_energies
+  use core_exact_sum, only: exact_sum_t, exact_value, exact_add_all, exact_add_each, &
+      exact_merge
   use contact_enforce, only: contact_t, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES
-  use parallel_env, only: par_rank, par_sum_array
+  use parallel_env, only: par_rank, par_sum_exact
   use io_deck, only: config_t
+  use io_rows, only: rows_restart
   implicit none
   private
-  public :: history_open, history_write, relative_error
+  public :: history_open, history_write, history_sums, relative_error
 
-  !> Per-material columns, in the order of hydro_material_energies' sums.
+  !> Per-material columns, in the order of history_sums' per_material.
   character(len=*), parameter :: MATERIAL_COLUMNS(4) = [character(len=12) :: 'internal', &
       'kinetic', 'plastic_work', 'hourglass']
 
 contains
 
-  !> history.txt: a fresh file, or on restart the lines up to the restart cycle.
+  !> history.txt: a fresh file, or on restart the lines up to the restart cycle
+  !> (streamed: linear in the file's length, rows of any width).
   subroutine history_open(config, state, restarted)
     type(config_t), intent(in) :: config
     type(state_t), intent(in) :: state
     logical, intent(in) :: restarted
-    integer :: unit, ios, n, k, j
-    character(len=4096) :: line
-    character(len=4096), allocatable :: keep(:)
+    integer :: k, j
     character(len=:), allocatable :: header
-    integer(i8) :: c
-    character(len=:), allocatable :: path
-    logical :: exists
     if (par_rank() /= 0) return
-    path = trim(config%output%directory)//'/history.txt'
-    allocate(keep(0))
-    inquire(file=path, exist=exists)
-    if (restarted .and. exists) then
-      open(newunit=unit, file=path, status='old', action='read')
-      read(unit, '(a)', iostat=ios) line
-      do
-        read(unit, '(a)', iostat=ios) line
-        if (ios /= 0) exit
-        read(line, *, iostat=ios) c
-        if (ios == 0 .and. c <= state%cycle) keep = [character(len=len(line)) :: keep, line]
-      end do
-      close(unit)
-    end if
-    open(newunit=unit, file=path, status='replace', action='write')
     header = '# cycle time dt internal_energy kinetic_energy boundary_work '// &
         'total_energy energy_error momentum_x momentum_y momentum_z contact_work'
     do k = 1, size(config%contacts)
@@ -62,11 +45,8 @@ contains
         header = header//' '//trim(config%materials(k)%name)//'_'//trim(MATERIAL_COLUMNS(j))
       end do
     end do
-    write(unit, '(a)') header
-    do n = 1, size(keep)
-      write(unit, '(a)') trim(keep(n))
-    end do
-    close(unit)
+    call rows_restart(trim(config%output%directory)//'/history.txt', header, restarted, ' ', &
+        state%cycle)
   end subroutine history_open
 
   subroutine history_write(config, mesh, state, ct)
@@ -76,17 +56,10 @@ contains
     type(contact_t), intent(in) :: ct
     real(rk) :: sums(5), total
     real(rk), allocatable :: per_material(:, :), flat(:)
-    integer, allocatable :: zone_material(:)
-    integer :: unit, k, z
-    call hydro_energies(mesh, state, sums)
-    call par_sum_array(sums)
-    allocate(zone_material(mesh%nzone), per_material(4, size(config%materials)))
-    do z = 1, mesh%nzone
-      zone_material(z) = config%blocks(mesh%zone_block(z))%material
-    end do
-    call hydro_material_energies(mesh, state, zone_material, per_material)
+    integer :: unit, k
+    allocate(per_material(4, size(config%materials)))
+    call history_sums(config, mesh, state, sums, per_material)
     flat = reshape(per_material, [size(per_material)])
-    call par_sum_array(flat)
     if (par_rank() /= 0) return
     total = sums(1) + sums(2)
     open(newunit=unit, file=trim(config%output%directory)//'/history.txt', status='old', &
@@ -101,6 +74,75 @@ contains
     write(unit, '(a)') ''
     close(unit)
   end subroutine history_write
+
+  !> The history's global sums, exact (core_exact_sum) so that they are
+  !> bitwise the same on any rank count: per_material(:, m) = internal,
+  !> kinetic (each corner's eighth of the zone mass at its node's velocity),
+  !> plastic work, hourglass work of the owned zones of material m (the
+  !> terms of hydro_material_energies); sums = internal and kinetic energy
+  !> (the exact sums of the materials' terms), momentum x, y, z (owned
+  !> nodes). Collective.
+  subroutine history_sums(config, mesh, state, sums, per_material)
+    type(config_t), intent(in) :: config
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    real(rk), intent(out) :: sums(5)
+    real(rk), intent(out) :: per_material(:, :) !< (4, nmaterial)
+    type(exact_sum_t), allocatable :: acc(:)
+    integer :: z, n, m, k, nm, nzo, nno
+    real(rk) :: v2
+    real(rk), allocatable :: term(:), speed2(:)
+    integer, allocatable :: which(:)
+    nm = size(config%materials)
+    nzo = mesh%nzone_owned
+    nno = mesh%nnode_owned
+    allocate(acc(5 + 4 * nm), term(max(nzo, nno)), which(nzo), speed2(mesh%nnode))
+    associate(v => state%node_velocity, mass => state%node_mass)
+      ! Per material: internal energy, kinetic energy (each corner's eighth
+      ! of the zone mass at its node's velocity), plastic and hourglass work.
+      do n = 1, mesh%nnode
+        speed2(n) = v(1, n) * v(1, n) + v(2, n) * v(2, n) + v(3, n) * v(3, n)
+      end do
+      do z = 1, nzo
+        which(z) = 5 + 4 * (config%blocks(mesh%zone_block(z))%material - 1)
+        term(z) = state%zone_mass(z) * state%zone_energy(z)
+      end do
+      call exact_add_each(acc, which + 1, term(1:nzo))
+      do z = 1, nzo
+        v2 = 0.0_rk
+        do k = 1, 8
+          v2 = v2 + speed2(mesh%zone_node(k, z))
+        end do
+        term(z) = 0.0625_rk * state%zone_mass(z) * v2
+      end do
+      call exact_add_each(acc, which + 2, term(1:nzo))
+      if (allocated(state%zone_plastic_work)) &
+          call exact_add_each(acc, which + 3, state%zone_plastic_work(1:nzo))
+      if (allocated(state%zone_hourglass_work)) &
+          call exact_add_each(acc, which + 4, state%zone_hourglass_work(1:nzo))
+      ! The totals of internal and kinetic energy are the materials' (exact
+      ! sums add exactly); momentum over the owned nodes.
+      do m = 1, nm
+        call exact_merge(acc(1), acc(5 + 4 * (m - 1) + 1))
+        call exact_merge(acc(2), acc(5 + 4 * (m - 1) + 2))
+      end do
+      do k = 1, 3
+        do n = 1, nno
+          term(n) = mass(n) * v(k, n)
+        end do
+        call exact_add_all(acc(2 + k), term(1:nno))
+      end do
+    end associate
+    call par_sum_exact(acc)
+    do k = 1, 5
+      sums(k) = exact_value(acc(k))
+    end do
+    do m = 1, nm
+      do k = 1, 4
+        per_material(k, m) = exact_value(acc(5 + 4 * (m - 1) + k))
+      end do
+    end do
+  end subroutine history_sums
 
   real(rk) function relative_error(total, state)
     real(rk), intent(in) :: total

@@ -14,6 +14,7 @@ module io_probe
   use parallel_env, only: par_rank, par_size, par_max, par_allgather
   use parallel_route, only: par_min_i8, par_max_i8
   use io_config, only: probe_spec_t, PROBE_FIELD_LEN
+  use io_rows, only: rows_restart
   implicit none
   private
   public :: probe_setup, probe_open, probe_sample
@@ -223,40 +224,15 @@ contains
     type(probes_t), intent(inout) :: probes
     type(state_t), intent(in) :: state
     logical, intent(in) :: restarted
-    integer :: i, unit, ios, n, comma
-    integer(i8) :: c
-    logical :: exists, same
-    character(len=8192) :: line
-    character(len=8192), allocatable :: keep(:)
+    integer :: i
+    logical :: same
     probes%time_last = state%time
     if (par_rank() /= 0) return
     do i = 1, size(probes%p)
       associate(p => probes%p(i))
-        allocate(keep(0))
-        inquire(file=p%path, exist=exists)
-        if (restarted .and. exists) then
-          open(newunit=unit, file=p%path, status='old', action='read')
-          read(unit, '(a)', iostat=ios) line
-          same = ios == 0 .and. trim(line) == p%header
-          do while (same)
-            read(unit, '(a)', iostat=ios) line
-            if (ios /= 0) exit
-            comma = index(line, ',')
-            if (comma < 2) cycle
-            read(line(1:comma - 1), *, iostat=ios) c
-            if (ios == 0 .and. c <= state%cycle) keep = [character(len=len(line)) :: keep, line]
-          end do
-          close(unit)
-          if (.not. same) write(error_unit, '(a)') 'warning: '//p%path//': its columns differ '// &
-              'from this deck''s &probe; the file starts again'
-        end if
-        open(newunit=unit, file=p%path, status='replace', action='write')
-        write(unit, '(a)') p%header
-        do n = 1, size(keep)
-          write(unit, '(a)') trim(keep(n))
-        end do
-        close(unit)
-        deallocate(keep)
+        call rows_restart(p%path, p%header, restarted, ',', state%cycle, p%header, same)
+        if (.not. same) write(error_unit, '(a)') 'warning: '//p%path//': its columns differ '// &
+            'from this deck''s &probe; the file starts again'
       end associate
     end do
   end subroutine probe_open

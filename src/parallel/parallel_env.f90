@@ -3,12 +3,14 @@
 module parallel_env
   use mpi_f08
   use core_kinds, only: rk, ik, i8
+  use core_exact_sum, only: exact_sum_t, exact_pack, exact_unpack, EXACT_PACKED
   use, intrinsic :: iso_fortran_env, only: error_unit
   implicit none
   private
   public :: par_init, par_finalize, par_abort
   public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle, par_io_info_handle
   public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_allgather
+  public :: par_sum_exact
 
   type(MPI_Comm) :: comm_world !< the run's communicator (set once)
   type(MPI_Info) :: io_info = MPI_INFO_NULL !< MPI-IO hints of the dumps (set once)
@@ -172,6 +174,17 @@ contains
     call MPI_Allreduce(x, s, size(x), MPI_DOUBLE_PRECISION, MPI_SUM, comm_world)
     x = s
   end subroutine par_sum_array
+
+  !> In-place global exact sums (core_exact_sum): every rank ends with the
+  !> sums of all ranks' terms, bitwise the same whatever the rank count and
+  !> whichever rank held which terms (an integer reduction of their limbs).
+  subroutine par_sum_exact(sums)
+    type(exact_sum_t), intent(inout) :: sums(:)
+    integer(i8) :: flat(EXACT_PACKED * size(sums)), total(EXACT_PACKED * size(sums))
+    call exact_pack(sums, flat)
+    call MPI_Allreduce(flat, total, size(flat), MPI_INTEGER8, MPI_SUM, comm_world)
+    call exact_unpack(total, sums)
+  end subroutine par_sum_exact
 
   function sum_int(x) result(s)
     integer(ik), intent(in) :: x

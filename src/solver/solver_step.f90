@@ -3,6 +3,7 @@
 !> cycle). Above hydro and contact, below io and app: no deck, no output.
 module solver_step
   use core_kinds, only: rk
+  use core_exact_sum, only: exact_sum_t, exact_value
   use core_timer, only: wall_time, timers_t
   use mesh_local, only: mesh_t
   use material_table, only: material_t
@@ -12,7 +13,7 @@ module solver_step
       hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux
   use contact_enforce, only: contact_t, contact_apply, contact_work_update
   use contact_monitor, only: contact_audit_run, contact_step_end
-  use parallel_env, only: par_sum
+  use parallel_env, only: par_sum_exact
   use solver_schedule, only: schedule_t
   implicit none
   private
@@ -39,21 +40,22 @@ contains
     real(rk), intent(in) :: dt
     integer, intent(out) :: bad_half, bad !< local zones with bad volume (0 = none)
     type(timers_t), intent(inout) :: timers
-    real(rk) :: work, contact_work
+    type(exact_sum_t) :: work(2) !< boundary, contact work of the step
     call timers%start('step')
     state%dt = dt
     if (ct%npair > 0) ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
     if (opt%single_stage) then
-      call solver_single_step(opt, materials, mesh, state, mz, bc, dt, bad, work, timers)
+      call solver_single_step(opt, materials, mesh, state, mz, bc, dt, bad, work(1), timers)
       bad_half = 0
-      contact_work = 0.0_rk
     else
       call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
-          work, contact_work, timers)
+          work(1), work(2), timers)
     end if
-    state%boundary_work = state%boundary_work + par_sum(work)
+    ! Exact sums: the works, and so the history, do not depend on the rank count.
+    call par_sum_exact(work)
+    state%boundary_work = state%boundary_work + exact_value(work(1))
     if (ct%npair > 0) then
-      state%contact_work = state%contact_work + par_sum(contact_work)
+      state%contact_work = state%contact_work + exact_value(work(2))
       call contact_step_end(ct)
       state%contact_pair_work = ct%pairs(:)%work
     end if
@@ -95,10 +97,9 @@ contains
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: dt
     integer, intent(out) :: bad_half, bad
-    real(rk), intent(out) :: work !< boundary work of the step (local)
-    real(rk), intent(out) :: contact_work !< contact work of the step (local)
+    type(exact_sum_t), intent(inout) :: work !< + boundary work of the step (local terms)
+    type(exact_sum_t), intent(inout) :: contact_work !< + contact work of the step (local terms)
     type(timers_t), intent(inout) :: timers !< sections 'halo' and 'contact'
-    real(rk) :: unused
     logical :: strength
 
     call save_step_start(mesh, state)
@@ -122,7 +123,7 @@ contains
           state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
       call timers%stop('contact')
     end if
-    call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half, unused)
+    call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half)
     call timers%start('halo')
     call mesh%node_halo%exchange(state%node_velocity_half)
     call timers%stop('halo')
@@ -143,7 +144,6 @@ contains
           state%node_velocity_half, dt)
     end if
     ! Contact on the final update, boundary conditions re-imposed after it.
-    contact_work = 0.0_rk
     if (ct%npair > 0) then
       call timers%start('contact')
       call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
@@ -193,7 +193,7 @@ contains
     type(boundary_t), intent(inout) :: bc
     real(rk), intent(in) :: dt
     integer, intent(out) :: bad
-    real(rk), intent(out) :: work
+    type(exact_sum_t), intent(inout) :: work !< + boundary work of the step (local terms)
     type(timers_t), intent(inout) :: timers
     call save_step_start(mesh, state)
     call hydro_forces(mesh, state, opt, bc, state%node_position, state%node_velocity, dt)

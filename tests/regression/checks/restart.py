@@ -4,7 +4,9 @@ count, ends bitwise identical (h5diff, /run excluded) to the uninterrupted run.
   restart --deck D --np A --restart-np B --from-cycle C [--replace OLD NEW ...]
       a run restarted from its cycle-C dump on B ranks ends bitwise identical
       to the uninterrupted run, and its history rows after cycle C equal the
-      uninterrupted run's (to the rank-order round-off of the sums)
+      uninterrupted run's (to the rank-order round-off of the sums; with
+      --history-bitwise, history.txt and the probe CSVs are byte for byte
+      those of the uninterrupted run)
   restartdeck --deck D --np A --restart-np B --from-cycle C
       /run of the cycle-C dump holds the deck text (byte for byte), version,
       command line and rank count; a restart with &material gamma changed is
@@ -61,6 +63,26 @@ def cmd_restart(args):
         same, diff = h5same(full, mine)
         check("final dump bitwise identical after restart", same, diff)
     check_history(os.path.join(args.workdir, "full"), wr, args.from_cycle)
+    if args.history_bitwise:
+        # The restart runs in a new directory: its files hold the header and
+        # the rows after the restart cycle.
+        for name in ["history.txt"] + sorted(os.path.basename(p) for p in glob.glob(
+                os.path.join(args.workdir, "full", "probe_*.csv"))):
+            a = rows_after(os.path.join(args.workdir, "full", name), args.from_cycle)
+            b = rows_after(os.path.join(wr, name), args.from_cycle)
+            check("%s after the restart: header and the %d rows after cycle %d byte for byte "
+                  "the uninterrupted run's" % (name, len(a) - 1, args.from_cycle),
+                  a == b and len(a) > 1)
+
+
+def rows_after(path, cycle):
+    """The header line and the rows of cycle > cycle of a history or probe
+    file, as bytes ([] when there is no file)."""
+    if not os.path.exists(path):
+        return []
+    lines = open(path, "rb").read().split(b"\n")
+    return lines[:1] + [r for r in lines[1:]
+                        if r and int(r.replace(b",", b" ").split()[0]) > cycle]
 
 
 def check_history(wd, wr, from_cycle):
@@ -217,10 +239,14 @@ def rank_pids(parent, np):
 
 def stopped_restart_check(args, deck, full, ws, code, out, err, why):
     """Common end of the stopfile, signal and walllimit commands: exit code 3,
-    the message, a restart dump before the final cycle; restarted on
-    --restart-np ranks the run ends bitwise identical to the uninterrupted one."""
+    the message, the timing report, a restart dump before the final cycle;
+    restarted on --restart-np ranks the run ends bitwise identical to the
+    uninterrupted one, its history.txt byte for byte the same."""
     check("stopped run exits with code 3", code == 3, "got %d: %s" % (code, err[-2000:]))
     check("it says why", why in out, out[-1000:])
+    check("it prints the timing report (set-up line and the closing line)",
+          re.search(r"^ +set-up +[0-9.]+$", out, re.M) is not None and
+          re.search(r"^impact3d: done, \d+ cycles", out, re.M) is not None, out[-1000:])
     stop_dump = final_dump(ws)
     print("  stopped at cycle %d of %d" % (dump_cycle(stop_dump), dump_cycle(full)))
     check("restart dump written before the end", stop_dump is not None
@@ -235,6 +261,11 @@ def stopped_restart_check(args, deck, full, ws, code, out, err, why):
     if os.path.exists(mine):
         same, diff = h5same(full, mine)
         check("final dump bitwise identical after the stop and restart", same, diff)
+        c = dump_cycle(stop_dump)
+        a = rows_after(os.path.join(os.path.dirname(full), "history.txt"), c)
+        b = rows_after(os.path.join(wr, "history.txt"), c)
+        check("history.txt after the stop and restart: header and the %d rows after cycle %d "
+              "byte for byte the uninterrupted run's" % (len(a) - 1, c), a == b and len(a) > 1)
     else:
         check("restarted run ends at the same cycle", False, mine)
 
@@ -336,6 +367,8 @@ def register(sub, common):
     p = sub.add_parser("restart", parents=[common], help="restart ends bitwise identical")
     add_restart(p)
     add_replace(p)
+    p.add_argument("--history-bitwise", action="store_true",
+                   help="history.txt and probe CSVs byte for byte the uninterrupted run's")
     p.set_defaults(func=cmd_restart)
     p = sub.add_parser("restartdeck", parents=[common],
                        help="the deck in /run; changed physics refused on restart")

@@ -1,11 +1,17 @@
 #!/usr/bin/python3
-"""tools/plot_history.py on a short run's history.txt and on a probe-style CSV.
+"""tools/plot_history.py on a short run's history.txt, its real probe file and
+a probe-style CSV.
 
 Usage: check.py EXE WORKDIR
 
-Runs tests/regression/decks/sod_small.nml (history.txt), writes a CSV in the
-probe format (header of comma-separated names, then rows) with known values,
-and checks:
+Runs tests/regression/decks/sod_small.nml with a &probe added (history.txt
+and probe_left.csv, whose columns carry units: 'time [us]',
+'velocity_x [cm/us]'), writes a CSV in the probe format without units with
+known values, and checks:
+  * the real probe file is plotted with columns named without their units
+    (-y velocity_x density, the time column found by itself), with the full
+    name, with -x time and -x 'time [us]', and together with history.txt;
+    an unknown column is refused with a suggestion;
   * --list prints history.txt's header columns;
   * plotting total_energy and kinetic_energy of history.txt, and
     velocity_z of the CSV, exits 0 and writes a PNG of the requested kind:
@@ -48,8 +54,13 @@ def main():
     if os.path.isdir(wd):
         shutil.rmtree(wd)
     os.makedirs(wd)
-    p = subprocess.run([exe, os.path.join(ROOT, "tests", "regression", "decks", "sod_small.nml")],
-                       cwd=wd, capture_output=True, text=True)
+    # sod_small with a probe at the right end (node 1 is at x = 0): a real
+    # probe file, its columns with units ('time [us]', 'velocity_x [cm/us]').
+    with open(os.path.join(ROOT, "tests", "regression", "decks", "sod_small.nml")) as f:
+        deck = f.read()
+    with open(os.path.join(wd, "deck.nml"), "w") as f:
+        f.write(deck + "&probe name = 'left', node = 1, fields = 'velocity density' /\n")
+    p = subprocess.run([exe, "deck.nml"], cwd=wd, capture_output=True, text=True)
     check("run ends", p.returncode == 0, (p.stdout + p.stderr)[-400:])
     hist = os.path.join(wd, "history.txt")
     csv = os.path.join(wd, "probe_rear.csv")
@@ -71,6 +82,26 @@ def main():
     p = run(csv, "-y", "velocity_z", "-o", "probe.png")
     ok, detail = png_ok(os.path.join(wd, "probe.png"))
     check("probe CSV column plotted", p.returncode == 0 and ok, p.stderr + detail)
+    real = os.path.join(wd, "probe_left.csv")
+    with open(real) as f:
+        real_header = f.readline().strip()
+    check("the real probe file has unit suffixes",
+          real_header.startswith("cycle,time [") and "velocity_x [" in real_header, real_header)
+    for args, what in (((real, "-y", "velocity_x", "density"), "names without units, time found"),
+                       ((real, "-y", "velocity_x [cm/us]", "-x", "time"), "full name, -x time"),
+                       ((real, "-y", "density", "-x", "time [us]"), "-x with its unit"),
+                       ((real, hist, "-y", "velocity_x", "kinetic_energy"),
+                        "probe and history together")):
+        out = os.path.join(wd, "real.png")
+        if os.path.exists(out):
+            os.remove(out)
+        p = run(*(args + ("-o", "real.png")))
+        ok, detail = png_ok(out)
+        check("real probe file plotted: " + what, p.returncode == 0 and ok, p.stderr + detail)
+    p = run(real, "-y", "velocity_q", "-o", "bad.png")
+    check("real probe file, unknown column: exit 2, suggestion without the unit",
+          p.returncode == 2 and "no column 'velocity_q'" in p.stderr and "did you mean" in
+          p.stderr, p.stderr)
     p = run(hist, "-y", "kinetic_enrgy", "-o", "bad.png")
     msg = p.stderr
     check("unknown column: exit 2", p.returncode == 2, "exit %d" % p.returncode)
