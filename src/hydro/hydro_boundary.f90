@@ -9,6 +9,7 @@ module hydro_boundary
   use mesh_geometry, only: HEX_FACE_NODES, quad_vector_area, quad_node_area_vectors
   use mesh_global, only: global_mesh_t, NAME_LEN
   use mesh_local, only: mesh_t
+  use core_names, only: name_hint
   implicit none
   private
   public :: boundary_setup, boundary_constrain, boundary_pressure_forces, boundary_wall
@@ -86,7 +87,8 @@ contains
       if (s == 0) then
         write(text, '(i0)') ib
         call status%add('&boundary('//trim(text)//'): set: '''//trim(specs(ib)%set)// &
-            ''' is not a face set of the mesh (valid: '//set_list(global)//')')
+            ''' is not a face set of the mesh'//name_hint(specs(ib)%set, &
+            global%set_name(1:global%nset)))
         cycle
       end if
       if (specs(ib)%kind /= BC_SYMMETRY .and. specs(ib)%kind /= BC_WALL) cycle
@@ -424,17 +426,6 @@ contains
       end if
     end do
   end subroutine boundary_wall
-
-  function set_list(global) result(text)
-    type(global_mesh_t), intent(in) :: global
-    character(len=:), allocatable :: text
-    integer :: k
-    text = ''
-    do k = 1, global%nset
-      if (k > 1) text = text//', '
-      text = text//trim(global%set_name(k))
-    end do
-  end function set_list
 
   integer function set_index(mesh, name) result(s)
     type(mesh_t), intent(in) :: mesh

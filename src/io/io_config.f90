@@ -73,11 +73,14 @@ module io_config
     type(probe_spec_t), allocatable :: probes(:) !< one per &probe group
     character(len=16) :: units = UNITS_CGSUS !< &control units: unit system of the deck
     logical :: materials_read = .true. !< false when a &material could not be read
+    !> initial node speeds above SPEED_LIMIT_CGSUS (a velocity in the wrong
+    !> units) are accepted
+    logical :: allow_high_speed = .false.
     character(len=:), allocatable :: deck_text !< the deck file as read (for the dumps)
   end type config_t
 
   !> &control: the run (end, steps, stops, units).
-  type(key_t), parameter, public :: CONTROL_KEYS(17) = [ &
+  type(key_t), parameter, public :: CONTROL_KEYS(18) = [ &
       key_t("title", "c", "''", "", &
       "run title (dumps, status)"), &
       key_t("t_end", "r", "required", "time", &
@@ -111,7 +114,9 @@ module io_config
       key_t("stop_check_every", "i", "10", "cycles", &
       "cycles between looks for the stop file"), &
       key_t("units", "c", "'cm-g-us-mbar'", "", &
-      "unit system of the deck: 'cm-g-us-mbar', 'si' or 'none'")]
+      "unit system of the deck: 'cm-g-us-mbar', 'si' or 'none'"), &
+      key_t("allow_high_speed", "l", ".false.", "", &
+      "accept initial node speeds above 10 cm/us (100 km/s; refused otherwise as a unit mistake)")]
 
   !> &output: dumps, history and status lines.
   type(key_t), parameter, public :: OUTPUT_KEYS(6) = [ &
@@ -159,9 +164,10 @@ contains
     real(rk) :: wall_limit
     character(len=256) :: msg
     character(len=16) :: units
+    logical :: allow_high_speed
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
         dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind, wall_limit, stop_file, &
-        stop_check_every, units
+        stop_check_every, units, allow_high_speed
 
     title = config%title
     t_end = config%t_end
@@ -174,6 +180,7 @@ contains
     deck_version = DECK_FORMAT_VERSION
     restart = ''
     units = config%units
+    allow_high_speed = config%allow_high_speed
     cfl = config%hydro%cfl
     dt_initial = config%hydro%dt_initial
     dt_max = config%hydro%dt_max
@@ -207,6 +214,7 @@ contains
     if (.not. units_valid(to_lower(units))) call status%add('&control: units: '''// &
         trim(units)//''' is not a unit system (valid: '//UNITS_LIST//')')
     config%units = to_lower(units)
+    config%allow_high_speed = allow_high_speed
     if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
         'in (0, 1]')
     if (dt_initial < 0.0_rk) call status%add('&control: dt_initial: must be >= 0 '// &
