@@ -133,7 +133,7 @@ contains
     real(rk) :: sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, sg_gamma0, sg_a_melt
     real(rk) :: lib_shear, lib_yield
     integer :: ios
-    logical :: found, sg_cold_energy
+    logical :: found, sg_cold_energy, rho0_refused
     character(len=256) :: msg
     character(len=16) :: where
     namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min, strength, &
@@ -216,16 +216,20 @@ contains
         end if
       end if
       ! A rho0 far from the library's is the usual sign of mixed units.
+      ! (The library's value is kept then, so that the regions are checked
+      ! against it and not against the mistake.)
+      rho0_refused = .false.
       if (rho0 /= UNSET .and. len_trim(library) > 0 .and. mat%mg%rho0 > 0.0_rk .and. &
           rho0 > 0.0_rk) then
-        if (rho0 >= DENSITY_FACTOR * mat%mg%rho0 .or. rho0 * DENSITY_FACTOR <= mat%mg%rho0) &
-            call status%add(trim(where)//': rho0: '//brief_text(rho0)//' is '// &
+        rho0_refused = rho0 >= DENSITY_FACTOR * mat%mg%rho0 .or. &
+            rho0 * DENSITY_FACTOR <= mat%mg%rho0
+        if (rho0_refused) call status%add(trim(where)//': rho0: '//brief_text(rho0)//' is '// &
             density_ratio_text(rho0 / mat%mg%rho0)//' the rho0 '//brief_text(mat%mg%rho0)// &
             ' of library '''//trim(library)//''' (in '//trim(units)//'), more than '// &
             to_text(nint(DENSITY_FACTOR))//' times from it: expected about '// &
             brief_text(mat%mg%rho0)//'; '//density_mistake(units, rho0 / mat%mg%rho0))
       end if
-      if (rho0 /= UNSET) mat%mg%rho0 = rho0
+      if (rho0 /= UNSET .and. .not. rho0_refused) mat%mg%rho0 = rho0
       if (c0 /= UNSET) mat%mg%c0 = c0
       if (s1 /= UNSET) mat%mg%s1 = s1
       if (gamma0 /= UNSET) mat%mg%gamma0 = gamma0
