@@ -11,6 +11,7 @@ module io_deck_checks
   use core_status, only: status_t
   use core_text, only: to_text
   use core_names, only: name_hint
+  use core_keys, only: UNSET
   use core_unit_checks, only: speed_limit, speed_limit_text, speed_mistake, brief_text
   use hydro_boundary, only: BC_VELOCITY
   use io_config, only: config_t
@@ -49,6 +50,7 @@ contains
     if (allocated(config%boundaries)) then
       do k = 1, size(config%boundaries)
         if (config%boundaries(k)%kind /= BC_VELOCITY) cycle
+        if (any(config%boundaries(k)%velocity == UNSET)) cycle
         call check_speed('&boundary('//to_text(k)//'): velocity', &
             norm2(config%boundaries(k)%velocity))
       end do
