@@ -15,7 +15,7 @@ build_type=${1:-Release}
 build_dir=${2:-build}
 
 packages="gfortran gcc cmake make libopenmpi-dev openmpi-bin libhdf5-openmpi-dev hdf5-tools
-  libmetis-dev liblapack-dev numdiff python3 python3-numpy python3-h5py python3-matplotlib
+  libmetis-dev libptscotch-dev liblapack-dev numdiff python3 python3-numpy python3-h5py python3-matplotlib
   libexodusii-dev libnetcdf-dev python3-netcdf4 python3-meshio"
 if [ "$viz" -eq 1 ]; then
   packages="$packages paraview python3-paraview xvfb xauth"

@@ -853,7 +853,8 @@ def render(data, out_path, img_dir):
     # The parallel contact scaling section is written by benchmarks/scaling.py.
     for name in ("lulesh_section.md", "viscosity_section.md", "heat_flux_section.md",
                  "single_stage_section.md", "cycle_profile_section.md", "cycle_section.md",
-                 "search_section.md", "contact_section.md", "scaling_section.md"):
+                 "search_section.md", "contact_section.md", "scaling_section.md",
+                 "weak_section.md"):
         extra = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
         if os.path.exists(extra):
             with open(extra, encoding="utf-8") as handle:

@@ -5,6 +5,9 @@ search (+ RCB), contact enforcement and contact migration; contact memory per
 rank against replicated contact; and a projection of the contact share of the
 step at 64 and 1024 ranks for a 10^7-zone problem.
 
+With --weak, the weak-scaling benchmark of set-up and loop instead
+(benchmarks/weak_scaling.py: its own options).
+
 Usage (from the repository root):
 
     /usr/bin/python3 benchmarks/scaling.py [--exe build-release/impact3d]
@@ -499,6 +502,11 @@ def replicated_low_mb(r):
 
 
 def main():
+    if "--weak" in sys.argv:
+        # Weak scaling of set-up and loop: benchmarks/weak_scaling.py.
+        sys.argv.remove("--weak")
+        import weak_scaling
+        return weak_scaling.main()
     p = argparse.ArgumentParser(description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--exe", default=os.path.join(ROOT, "build-release", "impact3d"))

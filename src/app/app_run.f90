@@ -24,7 +24,7 @@ module app_run
   use io_probe, only: probes_t, probe_open, probe_sample
   use io_output, only: output_dump, output_history, status_line, input_errors_report, &
       setup_echo, failure_message, max_cycles_message, stop_message, audit_stop_message, &
-      timing_report
+      timing_report, halo_report
   use parallel_env, only: par_sum, par_rank, par_bcast
   use app_provenance, only: restart_deck_check
   use app_setup, only: setup_run
@@ -64,6 +64,12 @@ contains
     wall_begin = wall_time()
     ! The report's sections, in the same order on every rank.
     call timers%add('set-up')
+    call timers%add('mesh generate', within='set-up')
+    call timers%add('dual graph', within='set-up')
+    call timers%add('partition', within='set-up')
+    call timers%add('migrate', within='set-up')
+    call timers%add('halo plans', within='set-up')
+    call timers%add('contact set-up', within='set-up')
     call timers%add('restart read')
     call timers%add('halo', within='step')
     call timers%add('contact', within='step')
@@ -279,6 +285,7 @@ contains
     end if
     if (ct%npair > 0) call contact_report(ct, wall_time() - wall_start - &
         timers%total('dumps'))
+    call halo_report(mesh, state%cycle)
     call timing_report(timers, state%cycle, wall_time() - wall_start)
   end subroutine time_loop
 

@@ -2,7 +2,7 @@
 !> boundaries, initial state, contact, the restart read.
 module app_setup
   use, intrinsic :: iso_fortran_env, only: output_unit
-  use core_kinds, only: rk, ik
+  use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
   use core_timer, only: timers_t
   use core_names, only: name_hint
@@ -11,7 +11,10 @@ module app_setup
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
   use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, &
       mesh_make_ball_octant, mesh_make_box_minus_ball
-  use mesh_local, only: mesh_t, mesh_build_local
+  use mesh_local, only: mesh_t
+  use mesh_range, only: mesh_range_t, range_init, range_add_box, range_add_global, &
+      range_set_index, box_sizes, box_set_counts
+  use mesh_distribute, only: mesh_distribute_build, distribute_stats_t
   use contact_surface, only: set_names_of
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS, HOURGLASS_NONE
   use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain, boundary_prescribed
@@ -25,8 +28,8 @@ module app_setup
   use io_probe, only: probes_t, probe_setup
   use app_provenance, only: restart_deck_check
   use material_table, only: STRENGTH_NONE
-  use parallel_env, only: par_size, par_rank, par_bcast
-  use parallel_partition, only: partition_zones
+  use parallel_env, only: par_size, par_rank, par_bcast, par_sum, par_max
+  use parallel_route, only: par_max_i8
   implicit none
   private
   public :: setup_run, setup_mesh, setup_state, assign_blocks
@@ -53,7 +56,9 @@ contains
     type(status_t), intent(inout) :: status
     type(global_mesh_t) :: global
     type(initial_offsets_t), allocatable :: offsets(:)
+    real(rk), allocatable :: coordinates(:, :)
     logical :: exists
+    integer :: n
     if (len_trim(restart) > 0) then
       exists = .false.
       if (par_rank() == 0) inquire(file=restart, exist=exists)
@@ -62,15 +67,26 @@ contains
           ''' does not exist')
       if (status%ok()) call restart_deck_check(restart, config, force, status)
     end if
-    if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
+    if (status%ok()) call setup_mesh(config, global, mesh, coordinates, bc, timers, status)
     if (.not. status%ok()) return
-    if (size(config%contacts) > 0) call contact_initial(config%contacts, global, &
-        bc%symmetry_planes, offsets, status)
-    if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
-    if (status%ok()) call probe_setup(config%probes, global, mesh, config%output%directory, &
-        config%units, probes, status)
-    if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
-        status, offsets, bc%symmetry_planes, boundary_prescribed(bc, size(state%node_mass)))
+    if (size(config%contacts) > 0) then
+      call timers%start('contact set-up')
+      call contact_initial(config%contacts, global, bc%symmetry_planes, offsets, status)
+      ! Initial overlaps may have moved nodes.
+      do n = 1, mesh%nnode
+        coordinates(:, n) = global%coordinates(:, mesh%node_gid(n))
+      end do
+      call timers%stop('contact set-up')
+    end if
+    if (status%ok()) call setup_state(config, coordinates, mesh, bc, state, mz, status)
+    if (status%ok()) call probe_setup(config%probes, mesh, coordinates, &
+        config%output%directory, config%units, probes, status)
+    if (status%ok()) then
+      call timers%start('contact set-up')
+      call contact_setup(config%contacts, global, mesh, state%node_mass, ct, status, offsets, &
+          bc%symmetry_planes, boundary_prescribed(bc, size(state%node_mass)))
+      call timers%stop('contact set-up')
+    end if
     if (.not. status%ok()) return
     call global%free()
     allocate(state%contact_pair_work(ct%npair), source=0.0_rk)
@@ -83,36 +99,45 @@ contains
     end if
   end subroutine setup_run
 
-  !> Each zone not yet in a block belongs to the last block whose box holds
-  !> its centroid; blocks marked in claimed (named after a volume group of an
-  !> imported mesh file: they belong to that part) are not candidates.
-  subroutine assign_blocks(config, global, status, claimed)
+  !> The block of a zone whose centroid is c: the last block whose box holds
+  !> it, blocks marked taken excepted (0 = none).
+  integer function block_at(config, c, taken) result(block)
     type(config_t), intent(in) :: config
-    type(global_mesh_t), intent(inout) :: global
-    type(status_t), intent(inout) :: status
-    logical, intent(in), optional :: claimed(:) !< per &block
-    integer :: z, b, missing
-    real(rk) :: c(3)
-    character(len=32) :: text
-    logical :: taken(size(config%blocks))
-    taken = .false.
-    if (present(claimed)) taken = claimed
-    missing = 0
-    do z = 1, global%nzone
-      if (global%zone_block(z) /= 0) cycle
-      c = hex_centroid(global%coordinates(:, global%connectivity(:, z)))
-      do b = 1, size(config%blocks)
-        if (taken(b)) cycle
-        associate(box => config%blocks(b)%box)
-          if (c(1) >= box(1) .and. c(1) <= box(2) .and. c(2) >= box(3) .and. &
-              c(2) <= box(4) .and. c(3) >= box(5) .and. c(3) <= box(6)) global%zone_block(z) = b
-        end associate
-      end do
-      if (global%zone_block(z) == 0) missing = missing + 1
+    real(rk), intent(in) :: c(3)
+    logical, intent(in) :: taken(:) !< per &block
+    integer :: b
+    block = 0
+    do b = 1, size(config%blocks)
+      if (taken(b)) cycle
+      associate(box => config%blocks(b)%box)
+        if (c(1) >= box(1) .and. c(1) <= box(2) .and. c(2) >= box(3) .and. &
+            c(2) <= box(4) .and. c(3) >= box(5) .and. c(3) <= box(6)) block = b
+      end associate
     end do
+  end function block_at
+
+  !> Each zone of this rank's range not yet in a block belongs to the last
+  !> block whose box holds its centroid; blocks marked in claimed (named after
+  !> a volume group of an imported mesh file: they belong to that part) are
+  !> not candidates. The count of zones in no block is over all ranks.
+  subroutine assign_blocks(config, range, status, claimed)
+    type(config_t), intent(in) :: config
+    type(mesh_range_t), intent(inout) :: range
+    type(status_t), intent(inout) :: status
+    logical, intent(in) :: claimed(:) !< per &block
+    integer :: z
+    integer(i8) :: missing
+    character(len=32) :: text
+    missing = 0
+    do z = 1, range%nzone
+      if (range%zone_block(z) /= 0) cycle
+      range%zone_block(z) = block_at(config, hex_centroid(range%corner_x(:, :, z)), claimed)
+      if (range%zone_block(z) == 0) missing = missing + 1
+    end do
+    missing = par_sum(missing)
     if (missing > 0) then
       write(text, '(i0)') missing
-      if (any(taken)) then
+      if (any(claimed)) then
         call status%add('&block: box: '//trim(text)//' zones lie in no block''s box '// &
             '(every zone needs a block; a &block named after a physical volume or element '// &
             'block of a mesh file holds that part''s zones only)')
@@ -154,31 +179,63 @@ contains
     end do
   end subroutine assign_blocks_by_name
 
-  !> Build the global mesh (every &mesh part, appended in deck order), check
-  !> blocks and boundaries, partition, localise.
-  subroutine setup_mesh(config, global, mesh, bc, status)
+  !> Build this rank's mesh: every &mesh part in deck order, each rank
+  !> generating only its contiguous range of the global zone ids (box parts
+  !> zone by zone; curved and imported parts are still built whole on every
+  !> rank and cut to the range), blocks, the parallel partition and the
+  !> distribution (mesh_distribute), the boundaries and the contact surfaces'
+  !> names. coordinates are the local nodes' initial positions. A deck with
+  !> &contact also gets the whole mesh in global (contact set-up still uses
+  !> it), built from the same parts.
+  subroutine setup_mesh(config, global, mesh, coordinates, bc, timers, status)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(inout) :: global
     type(mesh_t), intent(inout) :: mesh
+    real(rk), allocatable, intent(out) :: coordinates(:, :) !< (3, mesh%nnode)
     type(boundary_t), intent(inout) :: bc
+    type(timers_t), intent(inout) :: timers
     type(status_t), intent(inout) :: status
-    integer(ik), allocatable :: part(:)
     character(len=NAME_LEN), allocatable :: group_names(:)
-    type(global_mesh_t) :: piece
-    integer :: k, n, b
+    type(global_mesh_t), allocatable :: pieces(:)
+    type(mesh_range_t) :: range
+    type(distribute_stats_t) :: stats
+    integer :: k, n, b, nx, ny, nz, lo, hi, z, f, m
+    integer(i8) :: nzone, nnode, zone0, node0
+    integer, allocatable :: sets(:, :)
+    integer(i8), allocatable :: ord0(:, :), counts(:)
     character(len=16) :: where
     character(len=200), allocatable :: lines(:)
     character(len=:), allocatable :: imported
-    logical :: claimed(size(config%blocks))
+    logical :: claimed(size(config%blocks)), need_global, is_box
+    integer :: part_block(size(config%parts))
 
     claimed = .false.
     imported = ''
+    need_global = size(config%contacts) > 0
     call global%free()
     allocate(global%coordinates(3, 0), global%connectivity(8, 0), global%zone_block(0))
+    call timers%start('mesh generate')
+    ! Parts other than boxes are built whole (with their blocks, rotation and
+    ! offset); boxes only counted.
+    allocate(pieces(size(config%parts)))
+    nzone = 0
+    nnode = 0
+    part_block = 0
     do k = 1, size(config%parts)
-      associate(spec => config%parts(k))
+      associate(spec => config%parts(k), piece => pieces(k))
         where = '&mesh'
         if (size(config%parts) > 1) write(where, '(a,i0,a)') '&mesh(', k, ')'
+        if (len_trim(spec%block) > 0) then
+          do n = 1, size(config%blocks)
+            if (config%blocks(n)%name == spec%block) part_block(k) = n
+          end do
+          if (part_block(k) == 0) then
+            call status%add(trim(where)//': block: '''//trim(spec%block)// &
+                ''' is not the name of a &block'//name_hint(spec%block, config%blocks%name))
+            return
+          end if
+        end if
+        is_box = .false.
         select case (spec%mesh_type)
         case ('rod')
           call mesh_make_rod(spec%rod, piece, status)
@@ -198,9 +255,22 @@ contains
             write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
           end if
         case default
-          call mesh_make_box(spec%box, piece, status)
+          is_box = .true.
+          call box_sizes(spec%box, nx, ny, nz)
+          if (nx < 1 .or. ny < 1 .or. nz < 1) then
+            call status%add('&mesh: the box needs at least one zone in each direction')
+            return
+          end if
+          nzone = nzone + int(nx, i8) * ny * nz
+          nnode = nnode + int(nx + 1, i8) * (ny + 1) * (nz + 1)
+          if (need_global) call mesh_make_box(spec%box, piece, status)
         end select
         if (.not. status%ok()) return
+        if (.not. is_box) then
+          nzone = nzone + piece%nzone
+          nnode = nnode + piece%nnode
+        end if
+        if (.not. allocated(piece%coordinates)) cycle
         if (spec%rotation_angle /= 0.0_rk) call rotate(piece%coordinates, &
             spec%rotation_axis, spec%rotation_angle)
         do n = 1, piece%nnode
@@ -208,17 +278,8 @@ contains
         end do
         ! Blocks: the part's own block, else its physical volumes (Gmsh), else
         ! the block boxes (after the parts are joined).
-        if (len_trim(spec%block) > 0) then
-          b = 0
-          do n = 1, size(config%blocks)
-            if (config%blocks(n)%name == spec%block) b = n
-          end do
-          if (b == 0) then
-            call status%add(trim(where)//': block: '''//trim(spec%block)// &
-                ''' is not the name of a &block'//name_hint(spec%block, config%blocks%name))
-            return
-          end if
-          piece%zone_block = int(b, ik)
+        if (part_block(k) > 0) then
+          piece%zone_block = int(part_block(k), ik)
         else if (spec%mesh_type == 'gmsh' .or. spec%mesh_type == 'exodus') then
           call assign_blocks_by_name(config, where, mesh_import_group_kind(spec%mesh_type), &
               spec%mesh_path, group_names, piece, claimed, status)
@@ -231,16 +292,62 @@ contains
         else
           piece%zone_block = 0
         end if
-        call mesh_append(global, piece, trim(spec%name))
-        call piece%free()
       end associate
     end do
-    call assign_blocks(config, global, status, claimed)
+
+    ! This rank's range of the joined parts; sets named as mesh_append names
+    ! them (the plain names, then the part's prefixed ones).
+    call range_init(range, nzone, nnode)
+    zone0 = 0
+    node0 = 0
+    do k = 1, size(config%parts)
+      associate(spec => config%parts(k), piece => pieces(k))
+        is_box = spec%mesh_type == 'box'
+        if (is_box) then
+          call box_sizes(spec%box, nx, ny, nz)
+          allocate(counts(6))
+          counts = box_set_counts(nx, ny, nz)
+          allocate(sets(2, 6), ord0(2, 6))
+          call map_sets([character(len=NAME_LEN) :: 'xmin', 'xmax', 'ymin', 'ymax', &
+              'zmin', 'zmax'])
+          call range_add_box(range, spec%box, zone0, node0, sets, ord0, lo, hi)
+          do z = lo, hi
+            if (spec%rotation_angle /= 0.0_rk) call rotate(range%corner_x(:, :, z), &
+                spec%rotation_axis, spec%rotation_angle)
+            do f = 1, 8
+              range%corner_x(:, f, z) = range%corner_x(:, f, z) + spec%offset
+            end do
+          end do
+          if (hi >= lo) range%zone_block(lo:hi) = part_block(k)
+          zone0 = zone0 + int(nx, i8) * ny * nz
+          node0 = node0 + int(nx + 1, i8) * (ny + 1) * (nz + 1)
+        else
+          allocate(counts(piece%nset))
+          counts = int(piece%set_start(2:) - piece%set_start(:piece%nset), i8)
+          allocate(sets(2, piece%nset), ord0(2, piece%nset))
+          call map_sets(piece%set_name(:piece%nset))
+          call range_add_global(range, piece, zone0, node0, sets, ord0, lo, hi)
+          zone0 = zone0 + piece%nzone
+          node0 = node0 + piece%nnode
+        end if
+        if (need_global) call mesh_append(global, piece, trim(spec%name))
+        call piece%free()
+        deallocate(counts, sets, ord0)
+      end associate
+    end do
+    call timers%stop('mesh generate')
+    call assign_blocks(config, range, status, claimed)
+    if (need_global) then
+      do z = 1, global%nzone
+        if (global%zone_block(z) == 0) global%zone_block(z) = block_at(config, &
+            hex_centroid(global%coordinates(:, global%connectivity(:, z))), claimed)
+      end do
+    end if
     if (.not. status%ok()) return
     ! With imported parts, a &block that holds no zone is a misspelt name.
     if (len(imported) > 0) then
       do b = 1, size(config%blocks)
-        if (any(global%zone_block == b)) cycle
+        if (par_max(merge(1, 0, any(range%zone_block == b))) > 0) cycle
         write(where, '(a,i0,a)') '&block(', b, ')'
         call status%add(trim(where)//': name: '''//trim(config%blocks(b)%name)//''' holds '// &
             'no zone: it names no volume group of the mesh files ('//imported(3:)// &
@@ -248,12 +355,56 @@ contains
       end do
       if (.not. status%ok()) return
     end if
-    allocate(part(global%nzone))
-    call partition_zones(global%nnode, global%connectivity, par_size(), part)
-    call mesh_build_local(global, part, mesh)
-    call boundary_setup(config%boundaries, global, mesh, bc, status)
-    call check_contacts(config, global, status)
+    call mesh_distribute_build(range, config%partitioner, mesh, coordinates, stats, timers)
+    call partition_report(mesh, stats)
+    call boundary_setup(config%boundaries, mesh, coordinates, bc, status)
+    call check_contacts(config, mesh, status)
+
+  contains
+
+    !> sets/ord0 of the part's sets called names: the range's plain-name set
+    !> and, with a part name, the prefixed set; the faces before this part.
+    subroutine map_sets(names)
+      character(len=*), intent(in) :: names(:)
+      integer :: i
+      sets = 0
+      ord0 = 0
+      do i = 1, size(names)
+        sets(1, i) = range_set_index(range, names(i))
+      end do
+      if (len_trim(config%parts(k)%name) > 0) then
+        do i = 1, size(names)
+          sets(2, i) = range_set_index(range, trim(config%parts(k)%name)//'_'//trim(names(i)))
+        end do
+      end if
+      do i = 1, size(names)
+        do m = 1, 2
+          if (sets(m, i) == 0) cycle
+          ord0(m, i) = range%set_count(sets(m, i))
+          range%set_count(sets(m, i)) = range%set_count(sets(m, i)) + counts(i)
+        end do
+      end do
+    end subroutine map_sets
+
   end subroutine setup_mesh
+
+  !> One line on the partition: parts, faces cut, the largest rank's zones
+  !> over the mean, ghost nodes and set-up bytes sent (largest rank).
+  subroutine partition_report(mesh, stats)
+    type(mesh_t), intent(in) :: mesh
+    type(distribute_stats_t), intent(in) :: stats
+    integer :: largest, ghosts
+    integer(i8) :: bytes
+    real(rk) :: imbalance
+    largest = par_max(mesh%nzone_owned)
+    ghosts = par_max(mesh%nnode - mesh%nnode_owned)
+    bytes = par_max_i8(stats%bytes_sent)
+    imbalance = real(largest, rk) * par_size() / real(mesh%nzone_global, rk) - 1.0_rk
+    if (par_rank() == 0 .and. par_size() > 1) write(output_unit, '(a,i0,a,i0,a,f0.2,a,i0,a,f0.2,a)') &
+        'partition: ', par_size(), ' parts, edge cut ', stats%edge_cut, ' faces, imbalance ', &
+        100.0_rk * imbalance, '%, ghost nodes per rank <= ', ghosts, ', set-up sent <= ', &
+        real(bytes, rk) / 1.0e6_rk, ' MB per rank'
+  end subroutine partition_report
 
   !> Rotate points about the origin by angle (degrees, right-handed) about
   !> axis (Rodrigues' formula).
@@ -275,9 +426,9 @@ contains
   !> &contact pairs: their surfaces must be face sets of the mesh, checked
   !> here with the other set-up problems before any work; contact_setup
   !> (src/contact) builds the interfaces afterwards.
-  subroutine check_contacts(config, global, status)
+  subroutine check_contacts(config, mesh, status)
     type(config_t), intent(in) :: config
-    type(global_mesh_t), intent(in) :: global
+    type(mesh_t), intent(in) :: mesh
     type(status_t), intent(inout) :: status
     integer :: k
     character(len=16) :: where
@@ -296,19 +447,19 @@ contains
       names = set_names_of(list)
       if (size(names) == 0) call status%add(trim(where)//': '//key//': no face set named')
       do i = 1, size(names)
-        if (global%find_set(names(i)) == 0) call status%add(trim(where)//': '//key//': '''// &
+        if (.not. any(mesh%set_name == names(i))) call status%add(trim(where)//': '//key//': '''// &
             trim(names(i))//''' is not a face set of the mesh'//name_hint(names(i), &
-            global%set_name(1:global%nset)))
+            mesh%set_name(1:mesh%nset)))
       end do
     end subroutine check_list
 
   end subroutine check_contacts
 
-  !> Allocate the state and apply the initial conditions (positions from the
-  !> global mesh); nodal masses are the sums of corner masses m_z / 8.
-  subroutine setup_state(config, global, mesh, bc, state, mz, status)
+  !> Allocate the state and apply the initial conditions (positions of the
+  !> local nodes given); nodal masses are the sums of corner masses m_z / 8.
+  subroutine setup_state(config, coordinates, mesh, bc, state, mz, status)
     type(config_t), intent(in) :: config
-    type(global_mesh_t), intent(in) :: global
+    real(rk), intent(in) :: coordinates(:, :) !< (3, mesh%nnode)
     type(mesh_t), intent(inout) :: mesh
     type(boundary_t), intent(in) :: bc
     type(state_t), intent(inout) :: state
@@ -320,9 +471,7 @@ contains
     call state_init(state, mesh%nnode, mesh%nzone, config%hydro%hourglass == HOURGLASS_STIFFNESS, &
         any(config%materials%strength /= STRENGTH_NONE), &
         hourglass=config%hydro%hourglass /= HOURGLASS_NONE)
-    do n = 1, mesh%nnode
-      state%node_position(:, n) = global%coordinates(:, mesh%node_gid(n))
-    end do
+    state%node_position = coordinates
     allocate(zone_material(mesh%nzone))
     do z = 1, mesh%nzone
       zone_material(z) = config%blocks(mesh%zone_block(z))%material

@@ -4,12 +4,14 @@
 !> v <- P v + v0 (P projects onto the free directions); applied pressure is an
 !> external nodal force gathered in a fixed order.
 module hydro_boundary
-  use core_kinds, only: rk
+  use core_kinds, only: rk, i8
   use core_status, only: status_t
   use mesh_geometry, only: HEX_FACE_NODES, quad_vector_area, quad_node_area_vectors
-  use mesh_global, only: global_mesh_t, NAME_LEN
+  use mesh_global, only: NAME_LEN
   use mesh_local, only: mesh_t
   use core_names, only: name_hint
+  use parallel_env, only: par_rank, par_sum, par_sum_array, par_min, par_max
+  use parallel_route, only: par_ordered_sum
   implicit none
   private
   public :: boundary_setup, boundary_constrain, boundary_pressure_forces, boundary_wall
@@ -64,31 +66,34 @@ module hydro_boundary
 
 contains
 
-  !> Resolve the specs on the local mesh. Symmetry normals come from the
-  !> global face set (the same on every rank); a symmetry set must be planar.
-  subroutine boundary_setup(specs, global, mesh, bc, status)
+  !> Resolve the specs on the local mesh. Symmetry normals are the sums of
+  !> the set's face areas in the set's global order (par_ordered_sum: every
+  !> rank count gives the same bits); a symmetry set must be planar.
+  !> coordinates: the local nodes' initial positions.
+  subroutine boundary_setup(specs, mesh, coordinates, bc, status)
     type(boundary_spec_t), intent(in) :: specs(:)
-    type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: coordinates(:, :) !< (3, mesh%nnode)
     type(boundary_t), intent(inout) :: bc
     type(status_t), intent(inout) :: status
-    real(rk), allocatable :: dir(:, :, :), target(:, :), normal(:, :)
+    real(rk), allocatable :: dir(:, :, :), target(:, :), normal(:, :), areas(:, :)
+    integer(i8), allocatable :: keys(:)
     integer, allocatable :: ndir(:), slot(:)
-    integer :: ib, s, f, z, k, n, i, j, nowned
-    real(rk) :: area(3), p(3, 4), total(3), d(3), tval, len_d
+    integer :: ib, s, f, k, n, i, j, nowned, bad
+    real(rk) :: area(3), p(3, 4), total(3), d(3), tval, len_d, first(3)
     character(len=16) :: text
 
     nowned = mesh%nnode_owned
     allocate(normal(3, size(specs)))
     normal = 0.0_rk
-    ! Set normals (global, so every rank agrees) and planarity.
+    ! Set normals (ordered global sums, so every rank agrees) and planarity.
     do ib = 1, size(specs)
-      s = global%find_set(specs(ib)%set)
+      s = set_index(mesh, specs(ib)%set)
       if (s == 0) then
         write(text, '(i0)') ib
         call status%add('&boundary('//trim(text)//'): set: '''//trim(specs(ib)%set)// &
             ''' is not a face set of the mesh'//name_hint(specs(ib)%set, &
-            global%set_name(1:global%nset)))
+            mesh%set_name(1:mesh%nset)))
         cycle
       end if
       if (specs(ib)%kind /= BC_SYMMETRY .and. specs(ib)%kind /= BC_WALL) cycle
@@ -98,12 +103,17 @@ contains
         call check_wall_side(ib, s)
         cycle
       end if
-      total = 0.0_rk
-      do f = global%set_start(s), global%set_start(s + 1) - 1
-        z = global%set_zone(f)
-        p = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, global%set_face(f)), z))
-        total = total + quad_vector_area(p)
+      n = count(mesh%set_zone(mesh%set_start(s):mesh%set_start(s + 1) - 1) <= mesh%nzone_owned)
+      allocate(keys(n), areas(3, n))
+      n = 0
+      do f = mesh%set_start(s), mesh%set_start(s + 1) - 1
+        if (mesh%set_zone(f) > mesh%nzone_owned) cycle
+        n = n + 1
+        keys(n) = mesh%set_ord(f)
+        areas(:, n) = quad_vector_area(face_points(f))
       end do
+      call par_ordered_sum(keys, areas, total)
+      deallocate(keys, areas)
       if (norm2(total) <= 0.0_rk) then
         write(text, '(i0)') ib
         call status%add('&boundary('//trim(text)//'): set: '''//trim(specs(ib)%set)// &
@@ -111,29 +121,34 @@ contains
         cycle
       end if
       normal(:, ib) = total / norm2(total)
-      do f = global%set_start(s), global%set_start(s + 1) - 1
-        z = global%set_zone(f)
-        p = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, global%set_face(f)), z))
-        area = quad_vector_area(p)
-        if (dot_product(area, normal(:, ib)) < (1.0_rk - 1.0e-10_rk) * norm2(area)) then
-          write(text, '(i0)') ib
-          call status%add('&boundary('//trim(text)//'): type: '''//trim(kind_name(specs(ib)%kind)) &
-              //''' needs a plane, but set '''//trim(specs(ib)%set)//''' is not planar')
-          exit
-        end if
+      bad = 0
+      do f = mesh%set_start(s), mesh%set_start(s + 1) - 1
+        area = quad_vector_area(face_points(f))
+        if (dot_product(area, normal(:, ib)) < (1.0_rk - 1.0e-10_rk) * norm2(area)) bad = 1
       end do
+      if (par_max(bad) > 0) then
+        write(text, '(i0)') ib
+        call status%add('&boundary('//trim(text)//'): type: '''//trim(kind_name(specs(ib)%kind)) &
+            //''' needs a plane, but set '''//trim(specs(ib)%set)//''' is not planar')
+      end if
     end do
     if (.not. status%ok()) return
     allocate(bc%symmetry_planes(4, count(specs%kind == BC_SYMMETRY)))
     j = 0
     do ib = 1, size(specs)
       if (specs(ib)%kind /= BC_SYMMETRY) cycle
-      s = global%find_set(specs(ib)%set)
-      f = global%set_start(s)
-      p = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, global%set_face(f)), &
-          global%set_zone(f)))
+      ! The first node of the set's first face, from the rank that owns it.
+      s = set_index(mesh, specs(ib)%set)
+      first = 0.0_rk
+      do f = mesh%set_start(s), mesh%set_start(s + 1) - 1
+        if (mesh%set_ord(f) == 1 .and. mesh%set_zone(f) <= mesh%nzone_owned) then
+          p = face_points(f)
+          first = p(:, 1)
+        end if
+      end do
+      call par_sum_array(first)
       j = j + 1
-      bc%symmetry_planes(:, j) = [normal(:, ib), dot_product(normal(:, ib), p(:, 1))]
+      bc%symmetry_planes(:, j) = [normal(:, ib), dot_product(normal(:, ib), first)]
     end do
 
     ! Kinematic constraints: velocity directions first, then symmetry normals.
@@ -253,44 +268,53 @@ contains
     !> it (or on it, within 1e-9 of the set's extent) at t = 0.
     subroutine check_wall_side(ispec, s)
       integer, intent(in) :: ispec !< index of the &boundary group
-      integer, intent(in) :: s !< its global face set
-      integer :: ff, kk, nbeyond
-      real(rk) :: pts(3, 4), lo(3), hi(3), offset, depth, worst, at(3)
+      integer, intent(in) :: s !< its local face set
+      integer :: ff, kk, nbeyond, cc
+      real(rk) :: pts(3, 4), lo(3), hi(3), offset, depth, worst, at(3), gworst
       logical, allocatable :: beyond(:)
       character(len=200) :: detail
       offset = dot_product(normal(:, ispec), specs(ispec)%wall_point)
       lo = huge(1.0_rk)
       hi = -huge(1.0_rk)
-      do ff = global%set_start(s), global%set_start(s + 1) - 1
-        pts = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, &
-            global%set_face(ff)), global%set_zone(ff)))
+      do ff = mesh%set_start(s), mesh%set_start(s + 1) - 1
+        pts = face_points(ff)
         lo = min(lo, minval(pts, dim=2))
         hi = max(hi, maxval(pts, dim=2))
       end do
-      allocate(beyond(global%nnode))
+      do cc = 1, 3
+        lo(cc) = par_min(lo(cc))
+        hi(cc) = par_max(hi(cc))
+      end do
+      ! Owned nodes only: each node is counted by its owner, which holds
+      ! every zone around it.
+      allocate(beyond(mesh%nnode))
       beyond = .false.
       worst = 0.0_rk
       at = 0.0_rk
-      do ff = global%set_start(s), global%set_start(s + 1) - 1
-        pts = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, &
-            global%set_face(ff)), global%set_zone(ff)))
+      do ff = mesh%set_start(s), mesh%set_start(s + 1) - 1
+        pts = face_points(ff)
         do kk = 1, 4
           depth = dot_product(normal(:, ispec), pts(:, kk)) - offset
           if (depth <= 1.0e-9_rk * norm2(hi - lo)) cycle
-          beyond(global%connectivity(HEX_FACE_NODES(kk, global%set_face(ff)), &
-              global%set_zone(ff))) = .true.
+          cc = mesh%zone_node(HEX_FACE_NODES(kk, mesh%set_face(ff)), mesh%set_zone(ff))
+          if (cc <= nowned) beyond(cc) = .true.
           if (depth > worst) then
             worst = depth
             at = pts(:, kk)
           end if
         end do
       end do
-      nbeyond = count(beyond)
+      nbeyond = par_sum(count(beyond))
       if (nbeyond == 0) return
+      gworst = par_max(worst)
+      ! The farthest point, from the lowest rank that holds it.
+      cc = par_min(merge(par_rank(), huge(1), worst == gworst))
+      if (par_rank() /= cc) at = 0.0_rk
+      call par_sum_array(at)
       write(text, '(i0)') ispec
       write(detail, '(i0,a,3(1x,es12.5),a,es10.3)') nbeyond, ' node(s) of set '''// &
           trim(specs(ispec)%set)//''' start beyond the wall plane, the farthest (', at, &
-          ') by', worst
+          ') by', gworst
       call status%add('&boundary('//trim(text)//'): wall_point: '//trim(detail)// &
           ' cm (the set must start on the body side; wall_normal points out of the '// &
           'wall into the body)')
@@ -306,21 +330,23 @@ contains
       is_wall = .false.
       do iw = 1, size(specs)
         if (specs(iw)%kind /= BC_WALL) cycle
-        sg = global%find_set(specs(iw)%set)
-        offset = 0.0_rk
+        sg = set_index(mesh, specs(iw)%set)
+        offset = -huge(1.0_rk)
         if (allocated(specs(iw)%wall_normal)) offset = dot_product(normal(:, iw), &
             specs(iw)%wall_point)
         extent(:, 1) = huge(1.0_rk)
         extent(:, 2) = -huge(1.0_rk)
-        do ff = global%set_start(sg), global%set_start(sg + 1) - 1
-          pts = global%coordinates(:, global%connectivity(HEX_FACE_NODES(:, &
-              global%set_face(ff)), global%set_zone(ff)))
-          if (.not. allocated(specs(iw)%wall_normal)) then
-            offset = max(offset, maxval(matmul(normal(:, iw), pts)))
-            if (ff == global%set_start(sg)) offset = maxval(matmul(normal(:, iw), pts))
-          end if
+        do ff = mesh%set_start(sg), mesh%set_start(sg + 1) - 1
+          pts = face_points(ff)
+          if (.not. allocated(specs(iw)%wall_normal)) offset = max(offset, &
+              maxval(matmul(normal(:, iw), pts)))
           extent(:, 1) = min(extent(:, 1), minval(pts, dim=2))
           extent(:, 2) = max(extent(:, 2), maxval(pts, dim=2))
+        end do
+        offset = par_max(offset)
+        do kk = 1, 3
+          extent(kk, 1) = par_min(extent(kk, 1))
+          extent(kk, 2) = par_max(extent(kk, 2))
         end do
         sg = set_index(mesh, specs(iw)%set)
         do ff = mesh%set_start(sg), mesh%set_start(sg + 1) - 1
@@ -355,6 +381,13 @@ contains
       bc%nkinematic = count(is_kin)
       bc%kinematic_node = pack([(nn, nn = 1, nowned)], is_kin)
     end subroutine setup_walls
+
+    !> The corner positions of local set face ff.
+    function face_points(ff) result(pts)
+      integer, intent(in) :: ff
+      real(rk) :: pts(3, 4)
+      pts = coordinates(:, mesh%zone_node(HEX_FACE_NODES(:, mesh%set_face(ff)), mesh%set_zone(ff)))
+    end function face_points
 
     subroutine add_direction(node, dvec, value)
       integer, intent(in) :: node

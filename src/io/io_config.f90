@@ -58,6 +58,7 @@ module io_config
     integer :: max_cycles = 10000000
     real(rk) :: wall_limit = 0.0_rk !< wall-clock seconds; stop cleanly before (0 = none)
     character(len=PATH_LEN) :: stop_file = 'STOP' !< its existence stops the run cleanly
+    character(len=8) :: partitioner = 'scotch' !< 'scotch' (parallel) or 'metis' (rank 0)
     integer :: stop_check_every = 10 !< cycles between looks for the stop file
     integer :: fault_cycle = 0 !< testing aid: inject a fault at this cycle (0 = never)
     character(len=8) :: fault_kind = 'nan' !< 'nan' (NaN energy) or 'tangle' (mirror zone 1)
@@ -80,7 +81,7 @@ module io_config
   end type config_t
 
   !> &control: the run (end, steps, stops, units).
-  type(key_t), parameter, public :: CONTROL_KEYS(18) = [ &
+  type(key_t), parameter, public :: CONTROL_KEYS(19) = [ &
       key_t("title", "c", "''", "", &
       "run title (dumps, status)"), &
       key_t("t_end", "r", "required", "time", &
@@ -116,7 +117,9 @@ module io_config
       key_t("units", "c", "'cm-g-us-mbar'", "", &
       "unit system of the deck: 'cm-g-us-mbar', 'si' or 'none'"), &
       key_t("allow_high_speed", "l", ".false.", "", &
-      "accept initial node speeds above 10 cm/us (100 km/s; refused otherwise as a unit mistake)")]
+      "accept initial node speeds above 10 cm/us (100 km/s; refused otherwise as a unit mistake)"), &
+      key_t("partitioner", "c", "'scotch'", "", &
+      "zone partition: 'scotch' (PT-Scotch, in parallel) or 'metis' (serial METIS on rank 0)")]
 
   !> &output: dumps, history and status lines.
   type(key_t), parameter, public :: OUTPUT_KEYS(6) = [ &
@@ -165,9 +168,10 @@ contains
     character(len=256) :: msg
     character(len=16) :: units
     logical :: allow_high_speed
+    character(len=8) :: partitioner
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
         dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind, wall_limit, stop_file, &
-        stop_check_every, units, allow_high_speed
+        stop_check_every, units, allow_high_speed, partitioner
 
     title = config%title
     t_end = config%t_end
@@ -181,6 +185,7 @@ contains
     restart = ''
     units = config%units
     allow_high_speed = config%allow_high_speed
+    partitioner = config%partitioner
     cfl = config%hydro%cfl
     dt_initial = config%hydro%dt_initial
     dt_max = config%hydro%dt_max
@@ -215,6 +220,10 @@ contains
         trim(units)//''' is not a unit system (valid: '//UNITS_LIST//')')
     config%units = to_lower(units)
     config%allow_high_speed = allow_high_speed
+    partitioner = to_lower(partitioner)
+    if (partitioner /= 'scotch' .and. partitioner /= 'metis') call status%add('&control: '// &
+        'partitioner: '''//trim(partitioner)//''' is not a partitioner (valid: scotch, metis)')
+    config%partitioner = partitioner
     if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
         'in (0, 1]')
     if (dt_initial < 0.0_rk) call status%add('&control: dt_initial: must be >= 0 '// &

@@ -13,7 +13,8 @@ module io_dump
       h5_write_attr_int, h5_write_attr_string, h5_read_real_rows, h5_read_real_vector, &
       h5_read_attr_real, h5_read_attr_int, h5_read_attr_string, h5_dataset_rows, h5_create_group, &
       h5_path_exists
-  use parallel_env, only: par_rank, par_size, par_comm_handle, par_info_null_handle, par_max
+  use parallel_env, only: par_rank, par_size, par_comm_handle, par_info_null_handle, par_max, &
+      par_io_info_handle
   implicit none
   private
   public :: dump_write, dump_read, dump_read_deck, dump_series_update
@@ -56,7 +57,7 @@ contains
     nzo = mesh%nzone_owned
     node_first = mesh%node_io%first - 1
     zone_first = mesh%zone_io%first - 1
-    call h5_create_file(path, par_comm_handle(), par_info_null_handle(), file, e, msg)
+    call h5_create_file(path, par_comm_handle(), par_io_info_handle(), file, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     if (.not. agreed()) return
 

@@ -20,7 +20,8 @@ module io_output
   use contact_enforce, only: contact_t
   use solver_control, only: control_t, FAIL_VOLUME, FAIL_NAN, FAIL_DT, STOP_FILE, STOP_WALL
   use solver_eta, only: eta_t
-  use parallel_env, only: par_rank, par_size, par_sum_array, par_max
+  use parallel_env, only: par_rank, par_size, par_sum_array, par_max, par_allgather
+  use core_memory, only: peak_memory_mb
   use io_deck, only: config_t
   use io_dump, only: dump_write, dump_series_update, run_info_t
   use io_history, only: history_write, relative_error
@@ -28,7 +29,7 @@ module io_output
   private
   public :: output_dump, output_history, status_line, command_line
   public :: input_errors_report, setup_echo, failure_message, max_cycles_message
-  public :: stop_message, audit_stop_message, timing_report
+  public :: stop_message, audit_stop_message, timing_report, halo_report
 
 contains
 
@@ -279,6 +280,7 @@ contains
     real(rk), intent(in) :: loop_seconds !< this rank's time loop, dumps included
     real(rk) :: t(timers%count), loop, top
     integer :: k
+    call memory_report()
     do k = 1, timers%count
       t(k) = par_max(timers%timer(k)%total)
     end do
@@ -304,5 +306,48 @@ contains
         loop_seconds, ' s (', timers%total('dumps'), ' s of it in dumps)'
     flush(output_unit)
   end subroutine timing_report
+
+  !> The halo traffic per cycle, largest over the ranks: bytes and messages
+  !> each rank sent to refresh ghost nodes and ghost zones.
+  subroutine halo_report(mesh, cycles)
+    type(mesh_t), intent(in) :: mesh
+    integer(i8), intent(in) :: cycles
+    real(rk) :: bytes, messages
+    bytes = par_max(real(mesh%node_halo%bytes_sent + mesh%zone_halo%bytes_sent, rk))
+    messages = par_max(real(mesh%node_halo%messages_sent + mesh%zone_halo%messages_sent, rk))
+    if (par_rank() /= 0 .or. par_size() == 1) return
+    write(output_unit, '(a,f0.1,a,f0.1,a)') 'impact3d: halo exchange per cycle, largest rank: ', &
+        bytes / real(max(cycles, 1_i8), rk) / 1.0e3_rk, ' kB in ', &
+        messages / real(max(cycles, 1_i8), rk), ' messages'
+  end subroutine halo_report
+
+  !> The peak resident memory (VmHWM) of rank 0, the median rank and the
+  !> largest rank, in MB: what a batch job must request per rank.
+  subroutine memory_report()
+    real(rk) :: mine(1)
+    real(rk), allocatable :: all(:, :), sorted(:)
+    integer :: k, j, n, largest
+    real(rk) :: v
+    n = par_size()
+    allocate(all(1, n), sorted(n))
+    mine(1) = peak_memory_mb()
+    call par_allgather(mine, all)
+    if (par_rank() /= 0) return
+    sorted = all(1, :)
+    do k = 2, n
+      v = sorted(k)
+      j = k - 1
+      do while (j >= 1)
+        if (sorted(j) <= v) exit
+        sorted(j + 1) = sorted(j)
+        j = j - 1
+      end do
+      sorted(j + 1) = v
+    end do
+    largest = maxloc(all(1, :), dim=1)
+    write(output_unit, '(a,f0.1,a,f0.1,a,f0.1,a,i0,a)') 'impact3d: peak memory per rank (VmHWM): rank 0 ', &
+        all(1, 1), ' MB, median ', sorted((n + 1) / 2), ' MB, largest ', all(1, largest), &
+        ' MB (rank ', largest - 1, ')'
+  end subroutine memory_report
 
 end module io_output

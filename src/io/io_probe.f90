@@ -9,10 +9,10 @@ module io_probe
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_units, only: unit_of
-  use mesh_global, only: global_mesh_t
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
   use parallel_env, only: par_rank, par_size, par_max, par_allgather
+  use parallel_route, only: par_min_i8, par_max_i8
   use io_config, only: probe_spec_t, PROBE_FIELD_LEN
   implicit none
   private
@@ -46,10 +46,10 @@ contains
   !> Resolve every &probe on the deck's (global) mesh: node range, the zone
   !> that holds a point, owner ranks, columns. Problems go to status, naming
   !> the probe and the key.
-  subroutine probe_setup(specs, global, mesh, directory, units, probes, status)
+  subroutine probe_setup(specs, mesh, coordinates, directory, units, probes, status)
     type(probe_spec_t), intent(in) :: specs(:)
-    type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: coordinates(:, :) !< (3, mesh%nnode) initial positions
     character(len=*), intent(in) :: directory !< &output directory
     character(len=*), intent(in) :: units !< &control units
     type(probes_t), intent(out) :: probes
@@ -65,38 +65,49 @@ contains
       associate(s => specs(i), p => probes%p(i))
         where = '&probe '''//trim(s%name)//''''
         if (s%at_point) then
-          zg = containing_zone(global, s%point)
-          if (zg == 0) then
+          ! The lowest-id zone holding the point, over every rank's owned zones.
+          z = containing_zone(mesh, coordinates, s%point)
+          zg = huge(1_i8)
+          if (z > 0) zg = mesh%zone_gid(z)
+          zg = par_min_i8(zg)
+          if (zg == huge(1_i8)) then
             write(text, '(3(es12.5,:,", "))') s%point
             call status%add(where//': point: ('//trim(text)//') is outside the mesh')
             cycle
           end if
-          ! The nearest corner of that zone (ties: the lowest id).
-          best = huge(1.0_rk)
-          do k = 1, 8
-            n = global%connectivity(k, zg)
-            d = sum((global%coordinates(:, n) - s%point)**2)
-            if (d < best .or. (d == best .and. n < p%node_gid)) then
-              best = d
-              p%node_gid = n
+          ! The nearest corner of that zone (ties: the lowest id), by its owner.
+          p%node_gid = 0
+          if (z > 0) then
+            if (mesh%zone_gid(z) == zg) then
+              best = huge(1.0_rk)
+              do k = 1, 8
+                n = mesh%zone_node(k, z)
+                d = sum((coordinates(:, n) - s%point)**2)
+                if (d < best .or. (d == best .and. mesh%node_gid(n) < p%node_gid)) then
+                  best = d
+                  p%node_gid = mesh%node_gid(n)
+                end if
+              end do
             end if
-          end do
+          end if
+          p%node_gid = par_max_i8(p%node_gid)
           p%zone_gid = zg
         else
-          if (s%node < 1 .or. s%node > global%nnode) then
+          if (s%node < 1 .or. s%node > mesh%nnode_global) then
             write(text, '(i0,a,i0,a)') s%node, ' is out of range (the mesh has nodes 1 to ', &
-                global%nnode, ')'
+                mesh%nnode_global, ')'
             call status%add(where//': node: '//trim(text))
             cycle
           end if
           p%node_gid = s%node
-          ! Zone fields of a node probe: the node's lowest-id zone.
-          do z = 1, global%nzone
-            if (any(global%connectivity(:, z) == s%node)) then
-              p%zone_gid = z
-              exit
-            end if
+          ! Zone fields of a node probe: the node's lowest-id zone (the first
+          ! of its owner's corner list, which is sorted by zone id).
+          zg = 0
+          do n = 1, mesh%nnode_owned
+            if (mesh%node_gid(n) == s%node) zg = mesh%zone_gid((mesh%corner_list( &
+                mesh%corner_start(n)) - 1) / 8 + 1)
           end do
+          p%zone_gid = par_max_i8(zg)
         end if
         do n = 1, mesh%nnode_owned
           if (mesh%node_gid(n) == p%node_gid) p%node_local = n
@@ -158,21 +169,23 @@ contains
 
   end subroutine probe_setup
 
-  !> The lowest-id zone of the global mesh that holds point x (each hex split
+  !> The lowest-id owned zone of this rank that holds point x (each hex split
   !> into six tetrahedra about its 1-7 diagonal, exact for planar faces; a
   !> point on a face, within 1e-9 of the zone's volume, counts as inside);
   !> 0 when none does.
-  integer(i8) function containing_zone(global, x) result(zone)
-    type(global_mesh_t), intent(in) :: global
+  integer function containing_zone(mesh, coordinates, x) result(zone)
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: coordinates(:, :)
     real(rk), intent(in) :: x(3)
     integer, parameter :: TETS(3, 6) = reshape([2, 3, 7, 3, 4, 7, 4, 8, 7, 8, 5, 7, 5, 6, 7, &
         6, 2, 7], [3, 6])
     real(rk) :: c(3, 8), lo(3), hi(3), tol, v, a, b, w, e
     integer :: z, t, k
     zone = 0
-    do z = 1, global%nzone
+    ! Owned zones are sorted by global id: the first that holds x is the lowest.
+    do z = 1, mesh%nzone_owned
       do k = 1, 8
-        c(:, k) = global%coordinates(:, global%connectivity(k, z))
+        c(:, k) = coordinates(:, mesh%zone_node(k, z))
       end do
       lo = minval(c, dim=2)
       hi = maxval(c, dim=2)

@@ -7,10 +7,11 @@ module parallel_env
   implicit none
   private
   public :: par_init, par_finalize, par_abort
-  public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle
+  public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle, par_io_info_handle
   public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_allgather
 
   type(MPI_Comm) :: comm_world !< the run's communicator (set once)
+  type(MPI_Info) :: io_info = MPI_INFO_NULL !< MPI-IO hints of the dumps (set once)
   integer :: my_rank = 0 !< this rank
   integer :: n_ranks = 1 !< number of ranks
 
@@ -42,19 +43,29 @@ module parallel_env
 
 contains
 
-  !> Start MPI and record rank and size.
+  !> Start MPI and record rank and size. PT-Scotch (parallel_partition)
+  !> communicates from threads of its own: MPI must allow calls from any
+  !> thread (MPI_THREAD_MULTIPLE; impact3d itself calls MPI from one thread).
   subroutine par_init()
-    call MPI_Init()
+    integer :: provided
+    call MPI_Init_thread(MPI_THREAD_MULTIPLE, provided)
     comm_world = MPI_COMM_WORLD
     call MPI_Comm_rank(comm_world, my_rank)
     call MPI_Comm_size(comm_world, n_ranks)
+    ! Collective buffering for the dumps with 4 MiB buffers on the
+    ! aggregators (the defaults, 16 to 32 MiB, made the aggregating rank the
+    ! largest rank of a run).
+    call MPI_Info_create(io_info)
+    call MPI_Info_set(io_info, 'cb_buffer_size', '4194304')
   end subroutine par_init
 
   !> Finish MPI cleanly.
   subroutine par_finalize()
     logical :: done
     call MPI_Finalized(done)
-    if (.not. done) call MPI_Finalize()
+    if (done) return
+    if (io_info /= MPI_INFO_NULL) call MPI_Info_free(io_info)
+    call MPI_Finalize()
   end subroutine par_finalize
 
   !> Last resort when a rank cannot reach a collective: message and MPI_Abort.
@@ -87,6 +98,11 @@ contains
   integer function par_comm_handle()
     par_comm_handle = comm_world%MPI_VAL
   end function par_comm_handle
+
+  !> The dumps' MPI-IO hints as a plain integer handle (HDF5's Fortran API).
+  integer function par_io_info_handle()
+    par_io_info_handle = io_info%MPI_VAL
+  end function par_io_info_handle
 
   !> MPI_INFO_NULL as a plain integer handle (for HDF5's Fortran API).
   integer function par_info_null_handle()

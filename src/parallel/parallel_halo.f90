@@ -15,6 +15,8 @@ module parallel_halo
     integer, allocatable :: recv_start(:), recv_index(:) !< CSR of ghost local indices per neighbour
     real(rk), allocatable :: send_buffer(:), recv_buffer(:) !< work space, sized for 3 components
     type(MPI_Request), allocatable :: requests(:)
+    integer(i8) :: bytes_sent = 0 !< bytes sent by the exchanges so far
+    integer(i8) :: messages_sent = 0 !< messages sent by the exchanges so far
   contains
     procedure :: init => halo_init
     procedure :: free => halo_free
@@ -181,6 +183,8 @@ contains
           this%send_buffer(ncomp * (i - 1) + c) = field(c, this%send_index(i))
         end do
       end do
+      this%bytes_sent = this%bytes_sent + 8_i8 * ncomp * count_k
+      this%messages_sent = this%messages_sent + 1
       call MPI_Isend(this%send_buffer(ncomp * (first - 1) + 1), ncomp * count_k, &
           MPI_DOUBLE_PRECISION, this%neighbour(k), tag, comm, &
           this%requests(this%nneighbour + k))

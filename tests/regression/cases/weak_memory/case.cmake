@@ -1,0 +1,11 @@
+# No whole-mesh array at set-up: the zones' share of the largest rank's peak
+# memory at 40^3 zones per rank on 4 ranks is at most 1.25 times that on 1
+# rank (check.py's docstring derives the bound).
+impact3d_regress(parallel/weak_memory "regression;parallel"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/weak_memory
+  --mpiexec ${MPIEXEC_EXECUTABLE})
+# The same deck on the same rank count gives the same partition every time,
+# with at most 3% imbalance (partition_twice.py).
+impact3d_regress(parallel/partition_reproducible "regression;parallel"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/partition_twice.py ${EXE}
+  ${WORK}/partition_reproducible --mpiexec ${MPIEXEC_EXECUTABLE})

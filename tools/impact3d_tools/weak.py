@@ -1,0 +1,93 @@
+"""Weak-scaling runs: the Sedov box stacked along z, K x K x K N zones on N
+ranks ([0, 1.2] x [0, 1.2] x [0, 1.2 N], symmetry planes xmin, ymin and
+zmin, the problems/sedov deposit at the origin, t_end = 5e-4: about four
+cycles), and the parsing of a run's end-of-run report (peak memory per rank,
+set-up phases, partition line, halo traffic)."""
+
+import os
+import re
+import subprocess
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1")
+
+SETUP_PHASES = ("mesh generate", "dual graph", "partition", "migrate", "halo plans",
+                "contact set-up")
+
+
+def sedov_stack_deck(k, n, dumps=True):
+    """Deck text: K^3 zones per rank on N ranks."""
+    dump = "  dump_cycles = 2\n" if dumps else ""
+    return f"""&control
+  title = 'weak scaling Sedov, {k}^3 zones per rank, {n} ranks'
+  units = 'none'
+  t_end = 5.0e-4
+/
+&mesh
+  type = 'box'
+  x = 0.0, 1.2
+  nx = {k}
+  y = 0.0, 1.2
+  ny = {k}
+  z = 0.0, {1.2 * n}
+  nz = {k * n}
+/
+&material
+  name = 'gas', eos = 'ideal_gas', gamma = 1.4
+/
+&block
+  name = 'all', material = 'gas'
+/
+&region
+  density = 1.0, energy = 1.0e-10
+  deposit_energy = 0.106384, deposit_point = 0.0, 0.0, 0.0
+/
+&boundary set = 'xmin', type = 'symmetry' /
+&boundary set = 'ymin', type = 'symmetry' /
+&boundary set = 'zmin', type = 'symmetry' /
+&output
+  status_every = 1000
+{dump}/
+"""
+
+
+def parse_report(text):
+    """The run report's figures: memory (MB), set-up phases (s), partition
+    and halo lines."""
+    out = {}
+    m = re.search(r"peak memory per rank \(VmHWM\): rank 0 ([\d.]+) MB, median ([\d.]+) MB, "
+                  r"largest ([\d.]+) MB \(rank (\d+)\)", text)
+    if m:
+        out["rss_rank0"], out["rss_median"], out["rss_largest"] = (float(m.group(i))
+                                                                  for i in (1, 2, 3))
+    for name in ("set-up",) + SETUP_PHASES + ("step",):
+        m = re.search(r"^\s+" + re.escape(name) + r"\s+([\d.]+)", text, re.M)
+        if m:
+            out["t_" + name] = float(m.group(1))
+    m = re.search(r"partition: (\d+) parts, edge cut (\d+) faces, imbalance ([\d.]+)%, ghost "
+                  r"nodes per rank <= (\d+), set-up sent <= ([\d.]+) MB per rank", text)
+    if m:
+        out["edge_cut"] = int(m.group(2))
+        out["imbalance_pct"] = float(m.group(3))
+        out["ghost_nodes_max"] = int(m.group(4))
+        out["setup_sent_mb"] = float(m.group(5))
+    m = re.search(r"halo exchange per cycle, largest rank: ([\d.]+) kB in ([\d.]+) messages", text)
+    if m:
+        out["halo_kb_per_cycle"] = float(m.group(1))
+        out["halo_messages_per_cycle"] = float(m.group(2))
+    m = re.search(r"done, (\d+) cycles", text)
+    if m:
+        out["cycles"] = int(m.group(1))
+    return out
+
+
+def run_stack(exe, k, n, workdir, mpiexec="mpirun", deck_text=None, extra=()):
+    """Run the stacked deck (or deck_text) on n ranks in workdir; returns
+    (exit code, parsed report, output)."""
+    os.makedirs(workdir, exist_ok=True)
+    deck = os.path.join(workdir, "deck.nml")
+    with open(deck, "w") as f:
+        f.write(deck_text if deck_text is not None else sedov_stack_deck(k, n))
+    cmd = [mpiexec, "--oversubscribe", "-np", str(n), exe, *extra, "deck.nml"]
+    r = subprocess.run(cmd, cwd=workdir, env=ENV, capture_output=True, text=True)
+    return r.returncode, parse_report(r.stdout), r.stdout + r.stderr
