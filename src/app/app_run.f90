@@ -3,6 +3,7 @@
 !> orchestration: the cycle is solver_cycle (src/solver), what is due when is
 !> schedule_t, the output routines are io_output and io_history.
 module app_run
+  use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time, timers_t
@@ -24,7 +25,10 @@ module app_run
   use io_output, only: output_dump, output_history, status_line, input_errors_report, &
       setup_echo, failure_message, max_cycles_message, stop_message, audit_stop_message, &
       timing_report, halo_report
+  use parallel_env, only: par_sum, par_rank, par_bcast
+  use app_provenance, only: restart_deck_check
   use app_setup, only: setup_run
+  use app_summary, only: model_speed_check, model_summary
   implicit none
   private
   public :: run_deck
@@ -51,7 +55,9 @@ contains
     type(probes_t) :: probes
     character(len=256) :: restart
     character(len=400) :: msg
-    integer :: bad, ierr
+    integer :: bad, ierr, k
+    logical :: deck_ok, setup_failed
+    character(len=600), allocatable :: summary(:)
     real(rk) :: wall_begin, sums(5)
     real(rk), allocatable :: per_material(:, :)
 
@@ -77,14 +83,35 @@ contains
     call h5_library_open(ierr, msg)
     if (ierr /= 0) call status%add('HDF5: '//trim(msg))
     if (status%ok()) call deck_read(deck_path, config, status)
+    deck_ok = status%ok()
     restart = config%restart
     if (len_trim(restart_path) > 0) restart = restart_path
+    ! With deck errors the set-up does not run; the restart dump's deck is
+    ! still compared (a changed key is often the cause of the errors).
+    if (.not. deck_ok .and. ierr == 0 .and. len_trim(restart) > 0) &
+        call restart_check_anyway(restart, config, force, status)
     if (status%ok()) call setup_run(config, restart, force, mesh, bc, state, mz, ct, probes, &
         timers, status)
+    setup_failed = deck_ok .and. .not. status%ok()
+    if (status%ok() .and. len_trim(restart) == 0) call model_speed_check(config, mesh, state, &
+        status)
     if (status%ok()) call setup_echo(config, mesh, restart)
+    if (status%ok()) then
+      call model_summary(config, mesh, state, probes, summary)
+      if (par_rank() == 0) write(output_unit, '(a)') (trim(summary(k)), k = 1, size(summary))
+    end if
     if (status%ok() .and. .not. check_only) call output_directory_create( &
         config%output%directory, status)
     if (.not. status%ok()) call input_errors_report(status)
+    ! The checks that need the mesh did not run: say so.
+    if (.not. deck_ok .and. par_rank() == 0 .and. ierr == 0) write(error_unit, '(a)') &
+        'impact3d: not checked because of the deck errors above: the mesh (parts, '// &
+        'blocks of mesh files, face sets named by &boundary and &contact), the probes, the '// &
+        'initial node speeds and the model summary'
+    if (deck_ok .and. setup_failed .and. par_rank() == 0) write(error_unit, '(a)') &
+        'impact3d: set-up stopped at the first stage with errors; the later stages were '// &
+        'not checked (in order: mesh parts and blocks, &boundary and &contact face sets, '// &
+        'initial contact overlaps, initial state, probes, contact set-up, initial node speeds)'
     if (.not. status%ok() .or. check_only) then
       if (status%ok()) code = EXIT_OK
       return
@@ -118,6 +145,32 @@ contains
         wall_begin, timers, code)
     call h5_library_close(ierr, msg)
   end subroutine run_deck
+
+  !> The comparison of the deck with the restart dump's, when the deck has
+  !> errors (setup_run, which makes it otherwise, does not run then): its
+  !> problems are added to status.
+  subroutine restart_check_anyway(restart, config, force, status)
+    character(len=*), intent(in) :: restart
+    type(config_t), intent(in) :: config
+    logical, intent(in) :: force
+    type(status_t), intent(inout) :: status
+    type(status_t) :: own
+    logical :: exists
+    integer :: i
+    if (.not. allocated(config%deck_text)) return
+    exists = .false.
+    if (par_rank() == 0) inquire(file=restart, exist=exists)
+    call par_bcast(exists)
+    if (.not. exists) return
+    call restart_deck_check(restart, config, force, own)
+    do i = 1, own%count
+      if (i <= size(own%messages)) then
+        call status%add(trim(own%messages(i)))
+      else
+        call status%add('restart: (message kept on rank 0 only)')
+      end if
+    end do
+  end subroutine restart_check_anyway
 
   !> The time loop: step, checks, output when due; ends at t_end, at
   !> max_cycles, on a clean stop or on a failure.
@@ -165,7 +218,7 @@ contains
 
     do while (code == EXIT_OK)
       if (ctl%fail /= FAIL_NONE) then
-        call failure_message(config, state, ctl)
+        call failure_message(config, mesh, state, ctl)
         call output_dump(config, mesh, state, 'failure', wall_start, timers, ok)
         code = EXIT_FAILURE
         exit

@@ -5,6 +5,7 @@ module app_setup
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
   use core_timer, only: timers_t
+  use core_names, only: name_hint
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
@@ -169,7 +170,7 @@ contains
       end do
       if (map(g) == 0 .and. any(global%zone_block == g)) call status%add(trim(where)// &
           ': file: the '//kind//' '''//trim(group_names(g))//''' of mesh file '''//path// &
-          ''' has no &block of that name (valid: the name of any &block)')
+          ''' has no &block of that name'//name_hint(group_names(g), config%blocks%name))
       if (map(g) > 0 .and. any(global%zone_block == g)) claimed(map(g)) = .true.
     end do
     if (.not. status%ok()) return
@@ -230,7 +231,7 @@ contains
           end do
           if (part_block(k) == 0) then
             call status%add(trim(where)//': block: '''//trim(spec%block)// &
-                ''' is not the name of a &block')
+                ''' is not the name of a &block'//name_hint(spec%block, config%blocks%name))
             return
           end if
         end if
@@ -447,7 +448,8 @@ contains
       if (size(names) == 0) call status%add(trim(where)//': '//key//': no face set named')
       do i = 1, size(names)
         if (.not. any(mesh%set_name == names(i))) call status%add(trim(where)//': '//key//': '''// &
-            trim(names(i))//''' is not a face set of the mesh')
+            trim(names(i))//''' is not a face set of the mesh'//name_hint(names(i), &
+            mesh%set_name(1:mesh%nset)))
       end do
     end subroutine check_list
 
@@ -475,7 +477,8 @@ contains
       zone_material(z) = config%blocks(mesh%zone_block(z))%material
     end do
     call material_zones_build(zone_material, size(config%materials), mz)
-    call initial_apply(config%regions, config%materials, zone_material, mesh, state, status)
+    call initial_apply(config%regions, config%materials, zone_material, mesh, state, status, &
+        config%blocks%name)
     if (.not. status%ok()) return
     do n = 1, mesh%nnode_owned
       m = 0.0_rk

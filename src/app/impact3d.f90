@@ -35,6 +35,7 @@ program impact3d
           'usage: impact3d [--check] [--restart dump.h5 [--restart-force]] deck.nml', &
           '  --version        print the version and stop', &
           '  --keys           list every deck key: group, name, type, default, units, meaning', &
+          '  --materials      list the material library: parameters and sources', &
           '  --check          validate the deck and set up the mesh, run nothing', &
           '  --restart F      continue from dump F (same deck and mesh; &control and', &
           '                   &output may change)', &
@@ -56,6 +57,11 @@ program impact3d
       exit
     case ('--check')
       check_only = .true.
+    case ('--materials')
+      if (par_rank() == 0) call print_materials()
+      check_only = .true.
+      deck = '-'
+      exit
     case ('--restart')
       i = i + 1
       if (i > nargs) then
@@ -100,5 +106,54 @@ contains
       end do
     end do
   end subroutine print_keys
+
+  !> Every built-in data set: its parameters as a deck with library = name
+  !> gets them (strength models with data in the set), and their source.
+  subroutine print_materials()
+    use material_table, only: material_t, LIBRARY_NAMES, EOS_MIE_GRUNEISEN, material_library, &
+        STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK
+    use core_kinds, only: rk
+    use core_unit_checks, only: real_text => brief_text
+    use material_flow_stress, only: sg_set, jc_set
+    use app_summary, only: material_lines
+    type(material_t) :: mat
+    character(len=600), allocatable :: lines(:)
+    integer :: k
+    logical :: found
+    write(output_unit, '(a)') 'material library (cm-g-us-mbar, K; &material library = name, '// &
+        'eos = ''mie_gruneisen''; any key given overrides the library''s value):'
+    do k = 1, size(LIBRARY_NAMES)
+      mat = material_t()
+      mat%name = LIBRARY_NAMES(k)
+      mat%library = LIBRARY_NAMES(k)
+      mat%eos = EOS_MIE_GRUNEISEN
+      call material_library(trim(LIBRARY_NAMES(k)), mat%mg, mat%shear_modulus, &
+          mat%yield_stress, found)
+      write(output_unit, '(a)') '  '''//trim(LIBRARY_NAMES(k))//''':'
+      lines = material_lines(mat, 'cm-g-us-mbar')
+      write(output_unit, '(a)') trim(lines(1))
+      ! Strength: elastic-plastic G and Y0, then the model sets the library has.
+      if (mat%shear_modulus > 0.0_rk) then
+        write(output_unit, '(a)') '    strength elastic_plastic: G = '// &
+            real_text(mat%shear_modulus)//', Y0 = '//real_text(mat%yield_stress)
+      else
+        write(output_unit, '(a)') '    strength elastic_plastic: Y0 = '// &
+            real_text(mat%yield_stress)//' (no G: give shear_modulus)'
+      end if
+      mat%sg = sg_set(trim(LIBRARY_NAMES(k)))
+      if (mat%sg%g0 > 0.0_rk) then
+        mat%strength = STRENGTH_STEINBERG_GUINAN
+        lines = material_lines(mat, 'cm-g-us-mbar')
+        write(output_unit, '(a)') trim(lines(2))
+      end if
+      mat%jc = jc_set(trim(LIBRARY_NAMES(k)))
+      if (mat%jc%a > 0.0_rk) then
+        mat%strength = STRENGTH_JOHNSON_COOK
+        lines = material_lines(mat, 'cm-g-us-mbar')
+        write(output_unit, '(a)') trim(lines(2))
+      end if
+      write(output_unit, '(a)') trim(lines(size(lines)))
+    end do
+  end subroutine print_materials
 
 end program impact3d

@@ -9,6 +9,7 @@ module hydro_boundary
   use mesh_geometry, only: HEX_FACE_NODES, quad_vector_area, quad_node_area_vectors
   use mesh_global, only: NAME_LEN
   use mesh_local, only: mesh_t
+  use core_names, only: name_hint
   use parallel_env, only: par_rank, par_sum, par_sum_array, par_min, par_max
   use parallel_route, only: par_ordered_sum
   implicit none
@@ -91,7 +92,8 @@ contains
       if (s == 0) then
         write(text, '(i0)') ib
         call status%add('&boundary('//trim(text)//'): set: '''//trim(specs(ib)%set)// &
-            ''' is not a face set of the mesh (valid: '//set_list(mesh)//')')
+            ''' is not a face set of the mesh'//name_hint(specs(ib)%set, &
+            mesh%set_name(1:mesh%nset)))
         cycle
       end if
       if (specs(ib)%kind /= BC_SYMMETRY .and. specs(ib)%kind /= BC_WALL) cycle
@@ -457,17 +459,6 @@ contains
       end if
     end do
   end subroutine boundary_wall
-
-  function set_list(mesh) result(text)
-    type(mesh_t), intent(in) :: mesh
-    character(len=:), allocatable :: text
-    integer :: k
-    text = ''
-    do k = 1, mesh%nset
-      if (k > 1) text = text//', '
-      text = text//trim(mesh%set_name(k))
-    end do
-  end function set_list
 
   integer function set_index(mesh, name) result(s)
     type(mesh_t), intent(in) :: mesh

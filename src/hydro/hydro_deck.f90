@@ -8,6 +8,9 @@ module hydro_deck
   use core_kinds, only: rk
   use core_status, only: status_t
   use core_text, only: to_lower
+  use core_names, only: name_hint
+  use core_text, only: to_text
+  use core_unit_checks, only: DENSITY_FACTOR, density_ratio_text, density_mistake
   use core_keys, only: UNSET, key_t
   use parallel_env, only: par_rank
   use mesh_global, only: NAME_LEN
@@ -166,7 +169,7 @@ contains
 
   !> The index-th &region into spec; its block is named among blocks, and rank 0
   !> warns when its density is far from its material's rho0.
-  subroutine read_region(sect, index, blocks, materials, materials_read, spec, status)
+  subroutine read_region(sect, index, blocks, materials, materials_read, spec, status, units)
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     integer, intent(in) :: index
     type(block_spec_t), intent(in) :: blocks(:) !< the deck's blocks
@@ -174,6 +177,7 @@ contains
     logical, intent(in) :: materials_read !< every &material could be read
     type(region_t), intent(inout) :: spec !< this &region
     type(status_t), intent(inout) :: status
+    character(len=*), intent(in) :: units !< &control units, for the unit-mistake check
     character(len=NAME_LEN) :: block
     real(rk) :: box(6), density, energy, pressure, velocity(3), radial_u0, radial_r0, radial_k
     real(rk) :: center(3), deposit_energy, deposit_point(3)
@@ -208,7 +212,7 @@ contains
         if (blocks(i)%name == block) r%block = i
       end do
       if (r%block == 0) call status%add(trim(where)//': block: '''//trim(block)// &
-          ''' is not a block of this deck')
+          ''' is not a block of this deck'//name_hint(block, blocks%name))
     end if
     if (box(1) > box(2) .or. box(3) > box(4) .or. box(5) > box(6)) call status%add( &
         trim(where)//': box: needs xmin <= xmax, ymin <= ymax, zmin <= zmax')
@@ -237,25 +241,29 @@ contains
     r%deposit_point = deposit_point
     spec = r
     ! A density far from the material's reference density is the usual sign of
-    ! mixed units: rank 0 warns, once, before the run.
-    if (par_rank() == 0 .and. density /= UNSET .and. density > 0.0_rk .and. &
-        materials_read) call warn_density()
+    ! mixed units: more than DENSITY_FACTOR times is an error, more than 20% a
+    ! warning (rank 0, once, before the run).
+    if (density /= UNSET .and. density > 0.0_rk .and. materials_read) call check_density()
 
   contains
 
-    !> Warn when the density is more than 20% from the rho0 of the region's
-    !> material: that of its block, or without block that of every block whose
-    !> box meets the region's box (silent when any of them is within 20%, or
-    !> has no reference density).
-    subroutine warn_density()
+    !> The density against the rho0 of the region's material: that of its
+    !> block, or without block that of every block whose box meets the region's
+    !> box. Silent when any of them is within 20% or has no reference density;
+    !> an error when it is more than DENSITY_FACTOR times from every one of
+    !> them (naming the key, the value, the expected magnitude and the likely
+    !> unit mistake), else a warning.
+    subroutine check_density()
       use, intrinsic :: iso_fortran_env, only: error_unit
       real(rk), parameter :: TOLERANCE = 0.2_rk
-      logical :: listed(size(materials))
+      logical :: listed(size(materials)), far
       character(len=512) :: names
       character(len=16) :: text
       integer :: k, m
-      real(rk) :: rho_ref
+      real(rk) :: rho_ref, ratio
       listed = .false.
+      far = .true.
+      ratio = 1.0_rk
       names = ''
       do k = 1, size(blocks)
         if (r%block > 0 .and. k /= r%block) cycle
@@ -268,6 +276,9 @@ contains
         if (.not. (rho_ref > 0.0_rk)) return
         if (abs(density - rho_ref) <= TOLERANCE * rho_ref) return
         listed(m) = .true.
+        if (density < DENSITY_FACTOR * rho_ref .and. density * DENSITY_FACTOR > rho_ref) &
+            far = .false.
+        ratio = density / rho_ref
         write(text, '(es11.4)') rho_ref
         if (len_trim(names) > 0) names = trim(names)//', '
         names = trim(names)//''''//trim(materials(m)%name)//''' (rho0 = '// &
@@ -275,10 +286,17 @@ contains
       end do
       if (.not. any(listed)) return
       write(text, '(es11.4)') density
-      write(error_unit, '(a)') 'warning: '//trim(where)//': density: '// &
-          trim(adjustl(text))//' differs by more than 20% from the rho0 of material '// &
-          trim(names)//' (mixed units?)'
-    end subroutine warn_density
+      if (far) then
+        call status%add(trim(where)//': density: '//trim(adjustl(text))//' is '// &
+            density_ratio_text(ratio)//' the rho0 of material '//trim(names)// &
+            ', more than '//to_text(nint(DENSITY_FACTOR))//' times from it: expected '// &
+            'about the rho0; '//density_mistake(units, ratio))
+      else if (par_rank() == 0) then
+        write(error_unit, '(a)') 'warning: '//trim(where)//': density: '// &
+            trim(adjustl(text))//' differs by more than 20% from the rho0 of material '// &
+            trim(names)//' (mixed units?)'
+      end if
+    end subroutine check_density
 
     logical function boxes_meet(a, b)
       real(rk), intent(in) :: a(6), b(6)

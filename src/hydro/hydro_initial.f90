@@ -6,9 +6,9 @@ module hydro_initial
   use core_keys, only: UNSET
   use mesh_geometry, only: hex_centroid, hex_volume
   use mesh_local, only: mesh_t
-  use material_table, only: material_t, material_energy_from_pressure
+  use material_table, only: material_t, material_energy_from_pressure, EOS_MIE_GRUNEISEN
   use hydro_state, only: state_t
-  use parallel_env, only: par_allgather, par_size, par_sum
+  use parallel_env, only: par_allgather, par_size, par_sum, par_sum_array, par_max
   implicit none
   private
   public :: initial_apply, UNSET
@@ -40,17 +40,23 @@ contains
 
   !> Set density, energy, masses and velocities; zone_material maps zones to
   !> materials. Needs node positions; leaves pressure to the caller's EOS pass.
-  subroutine initial_apply(regions, materials, zone_material, mesh, state, status)
+  !> A zone that no region gives a density gets its material's reference
+  !> density rho0 (Mie-Gruneisen); one whose material has none (ideal gas) is
+  !> an error naming its block (block_names) and material.
+  subroutine initial_apply(regions, materials, zone_material, mesh, state, status, block_names)
     type(region_t), intent(in) :: regions(:)
     type(material_t), intent(in) :: materials(:)
     integer, intent(in) :: zone_material(:)
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(inout) :: state
     type(status_t), intent(inout) :: status
-    real(rk), allocatable :: centroid(:, :), record(:), all(:, :)
+    character(len=*), intent(in), optional :: block_names(:) !< per block, for messages
+    real(rk), allocatable :: centroid(:, :), record(:), all(:, :), missing_block(:)
     logical, allocatable :: node_in(:)
     real(rk) :: xz(3, 8), r(3), rn, best(2), missing
-    integer :: ir, z, k, n, nrank, j
+    integer :: ir, z, k, n, nrank, j, nblock
+    character(len=32) :: text
+    character(len=80) :: label
     integer(i8) :: best_gid
 
     allocate(centroid(3, mesh%nzone))
@@ -73,10 +79,38 @@ contains
             materials(zone_material(z)), state%zone_density(z), regions(ir)%pressure)
       end do
     end do
+    ! The material's reference density where no region gives one.
+    do z = 1, mesh%nzone
+      if (state%zone_density(z) /= UNSET) cycle
+      if (materials(zone_material(z))%eos /= EOS_MIE_GRUNEISEN) cycle
+      if (materials(zone_material(z))%mg%rho0 > 0.0_rk) &
+          state%zone_density(z) = materials(zone_material(z))%mg%rho0
+    end do
     missing = real(count(state%zone_density(1:mesh%nzone_owned) == UNSET), rk)
     if (par_sum(missing) > 0.0_rk) then
-      call status%add('&region: density: some zones get no density from any region '// &
-          '(give density in a region that covers every block)')
+      nblock = 0
+      if (mesh%nzone > 0) nblock = maxval(mesh%zone_block(1:mesh%nzone))
+      nblock = par_max(nblock)
+      allocate(missing_block(nblock))
+      missing_block = 0.0_rk
+      do z = 1, mesh%nzone_owned
+        if (state%zone_density(z) == UNSET) missing_block(mesh%zone_block(z)) = &
+            missing_block(mesh%zone_block(z)) + 1.0_rk
+      end do
+      call par_sum_array(missing_block)
+      do k = 1, nblock
+        if (missing_block(k) == 0.0_rk) cycle
+        write(text, '(i0)') nint(missing_block(k))
+        if (present(block_names)) then
+          write(label, '(a)') 'block '''//trim(block_names(k))//''''
+        else
+          write(label, '(a,i0)') 'block ', k
+        end if
+        call status%add('&region: density: '//trim(text)//' zones of '//trim(label)// &
+            ' get no density from any region, and their material '''// &
+            trim(material_of_block(k))//''' has no reference density (ideal gas): '// &
+            'give density in a region that covers them')
+      end do
       return
     end if
     state%zone_mass = state%zone_density * state%zone_volume
@@ -126,6 +160,24 @@ contains
     end do
 
   contains
+
+    !> The material of a block's zones (on any rank), for the message.
+    function material_of_block(b) result(name)
+      integer, intent(in) :: b
+      character(len=:), allocatable :: name
+      real(rk) :: m
+      integer :: zz
+      m = 0.0_rk
+      do zz = 1, mesh%nzone_owned
+        if (mesh%zone_block(zz) == b) then
+          m = real(zone_material(zz), rk)
+          exit
+        end if
+      end do
+      m = par_max(m)
+      name = '?'
+      if (m > 0.0_rk) name = trim(materials(nint(m))%name)
+    end function material_of_block
 
     logical function selected(zz)
       integer, intent(in) :: zz

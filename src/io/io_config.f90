@@ -74,11 +74,14 @@ module io_config
     type(probe_spec_t), allocatable :: probes(:) !< one per &probe group
     character(len=16) :: units = UNITS_CGSUS !< &control units: unit system of the deck
     logical :: materials_read = .true. !< false when a &material could not be read
+    !> initial node speeds above SPEED_LIMIT_CGSUS (a velocity in the wrong
+    !> units) are accepted
+    logical :: allow_high_speed = .false.
     character(len=:), allocatable :: deck_text !< the deck file as read (for the dumps)
   end type config_t
 
   !> &control: the run (end, steps, stops, units).
-  type(key_t), parameter, public :: CONTROL_KEYS(18) = [ &
+  type(key_t), parameter, public :: CONTROL_KEYS(19) = [ &
       key_t("title", "c", "''", "", &
       "run title (dumps, status)"), &
       key_t("t_end", "r", "required", "time", &
@@ -113,6 +116,8 @@ module io_config
       "cycles between looks for the stop file"), &
       key_t("units", "c", "'cm-g-us-mbar'", "", &
       "unit system of the deck: 'cm-g-us-mbar', 'si' or 'none'"), &
+      key_t("allow_high_speed", "l", ".false.", "", &
+      "accept initial node speeds above 10 cm/us (100 km/s; refused otherwise as a unit mistake)"), &
       key_t("partitioner", "c", "'scotch'", "", &
       "zone partition: 'scotch' (PT-Scotch, in parallel) or 'metis' (serial METIS on rank 0)")]
 
@@ -162,10 +167,11 @@ contains
     real(rk) :: wall_limit
     character(len=256) :: msg
     character(len=16) :: units
+    logical :: allow_high_speed
     character(len=8) :: partitioner
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
         dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind, wall_limit, stop_file, &
-        stop_check_every, units, partitioner
+        stop_check_every, units, allow_high_speed, partitioner
 
     title = config%title
     t_end = config%t_end
@@ -178,6 +184,7 @@ contains
     deck_version = DECK_FORMAT_VERSION
     restart = ''
     units = config%units
+    allow_high_speed = config%allow_high_speed
     partitioner = config%partitioner
     cfl = config%hydro%cfl
     dt_initial = config%hydro%dt_initial
@@ -212,6 +219,7 @@ contains
     if (.not. units_valid(to_lower(units))) call status%add('&control: units: '''// &
         trim(units)//''' is not a unit system (valid: '//UNITS_LIST//')')
     config%units = to_lower(units)
+    config%allow_high_speed = allow_high_speed
     partitioner = to_lower(partitioner)
     if (partitioner /= 'scotch' .and. partitioner /= 'metis') call status%add('&control: '// &
         'partitioner: '''//trim(partitioner)//''' is not a partitioner (valid: scotch, metis)')

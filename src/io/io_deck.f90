@@ -20,6 +20,7 @@ module io_deck
   use hydro_deck, only: read_hydro, read_region, read_boundary, HYDRO_KEYS, REGION_KEYS, &
       BOUNDARY_KEYS
   use contact_deck, only: read_contact, CONTACT_KEYS
+  use io_deck_checks, only: deck_cross_checks
   use material_table, only: STRENGTH_NONE
   use hydro_boundary, only: BC_WALL
   use io_config, only: config_t, read_control, read_output, read_probe, CONTROL_KEYS, &
@@ -224,7 +225,7 @@ contains
         case ('region')
           counts(6) = counts(6) + 1
           call read_region(sect, counts(6), config%blocks, config%materials, &
-              config%materials_read, config%regions(counts(6)), status)
+              config%materials_read, config%regions(counts(6)), status, config%units)
         case ('boundary')
           counts(7) = counts(7) + 1
           call read_boundary(sect, counts(7), config%boundaries(counts(7)), status)
@@ -254,6 +255,9 @@ contains
             "(use 'predictor_corrector')")
       end if
     end if
+    ! Across groups: the &block of a &mesh part, the speeds against the
+    ! unit-mistake limit.
+    call deck_cross_checks(config, status)
     ! A key whose value was rejected above was not read: what the groups then
     ! say about that key (required, out of range) is not news.
     do k = 1, nbad

@@ -7,7 +7,10 @@ module io_output
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time, timers_t
-  use core_text, only: fixed_text
+  use core_text, only: fixed_text, to_text
+  use core_units, only: unit_of
+  use core_unit_checks, only: brief_text
+  use material_table, only: EOS_MIE_GRUNEISEN
   use core_version, only: IMPACT3D_VERSION
   use core_signal, only: signal_name
   use mesh_local, only: mesh_t
@@ -167,11 +170,25 @@ contains
   end subroutine setup_echo
 
   !> The failure path's message (rank 0): what failed, where, when.
-  subroutine failure_message(config, state, ctl)
+  subroutine failure_message(config, mesh, state, ctl)
     type(config_t), intent(in) :: config
+    type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
     type(control_t), intent(in) :: ctl
     character(len=64) :: what
+    real(rk) :: zone(4) !< block, density, sound speed, found (the owner's, summed)
+    integer :: z, m
+    character(len=:), allocatable :: text
+    ! The zone that sets the step, from its owner (collective).
+    zone = 0.0_rk
+    if (ctl%fail == FAIL_DT) then
+      do z = 1, mesh%nzone_owned
+        if (mesh%zone_gid(z) /= ctl%fail_id) cycle
+        zone = [real(mesh%zone_block(z), rk), state%zone_density(z), &
+            state%zone_sound_speed(z), 1.0_rk]
+      end do
+      call par_sum_array(zone)
+    end if
     if (par_rank() /= 0) return
     select case (ctl%fail)
     case (FAIL_VOLUME)
@@ -190,6 +207,21 @@ contains
         state%cycle, ', time ', state%time
     if (ctl%fail == FAIL_DT) write(error_unit, '(a,es12.5,a,es12.5)') '  dt = ', ctl%dt, &
         ' < dt_min = ', config%hydro%dt_min
+    if (ctl%fail == FAIL_DT .and. zone(4) > 0.0_rk) then
+      m = config%blocks(nint(zone(1)))%material
+      text = '  zone '//to_text(ctl%fail_id)//': block '''// &
+          trim(config%blocks(nint(zone(1)))%name)//''', material '''// &
+          trim(config%materials(m)%name)//''''
+      if (config%materials(m)%eos == EOS_MIE_GRUNEISEN) then
+        text = text//', compression rho/rho0 = '//brief_text(zone(2) / &
+            config%materials(m)%mg%rho0)//' (rho = '//brief_text(zone(2))//')'
+      else
+        text = text//', rho = '//brief_text(zone(2))//' (no reference density)'
+      end if
+      text = text//', sound speed '//brief_text(zone(3))//' '// &
+          unit_of(config%units, 'velocity')
+      write(error_unit, '(a)') text
+    end if
     write(error_unit, '(a)') '  writing a final dump and stopping'
     flush(error_unit)
   end subroutine failure_message

@@ -7,12 +7,16 @@ module material_deck
   use core_kinds, only: rk
   use core_status, only: status_t
   use core_text, only: to_lower
+  use core_names, only: name_hint
+  use core_text, only: to_text
+  use core_unit_checks, only: DENSITY_FACTOR, brief_text, density_ratio_text, density_mistake
   use core_keys, only: UNSET, key_t, KEY_LEN
   use core_units, only: UNITS_SI, UNITS_NONE, SI_DENSITY, SI_VELOCITY, SI_PRESSURE, &
       SI_SPECIFIC_ENERGY, SI_TIME
   use mesh_global, only: NAME_LEN
   use material_table, only: material_t, EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN, material_library, &
-      STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC, STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK
+      STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC, STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK, &
+      LIBRARY_NAMES
   use material_flow_stress, only: sg_set, jc_set, SG_SET_NAMES, JC_SET_NAMES
   implicit none
   private
@@ -35,7 +39,7 @@ module material_deck
       key_t("gamma", "r", "required for ideal_gas", "", &
       "ratio of specific heats, > 1"), &
       key_t("library", "c", "''", "", &
-      "built-in data set: 'al6061', 'cu_ofhc', 'cu_taylor', 'ss304' or 'be_verney'"), &
+      "built-in data set (impact3d --materials): al6061, cu_ofhc, cu_taylor, ss304, be_verney, wha, ti6al4v, steel_1006"), &
       key_t("rho0", "r", "from library", "density", &
       "reference density"), &
       key_t("c0", "r", "from library", "velocity", &
@@ -129,7 +133,7 @@ contains
     real(rk) :: sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, sg_gamma0, sg_a_melt
     real(rk) :: lib_shear, lib_yield
     integer :: ios
-    logical :: found, sg_cold_energy
+    logical :: found, sg_cold_energy, rho0_refused
     character(len=256) :: msg
     character(len=16) :: where
     namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min, strength, &
@@ -181,6 +185,7 @@ contains
     end if
     if (len_trim(name) == 0) call status%add(trim(where)//': name: required')
     mat%name = name
+    mat%library = to_lower(library)
     select case (to_lower(eos))
     case ('ideal_gas')
       mat%eos = EOS_IDEAL_GAS
@@ -198,7 +203,7 @@ contains
       if (len_trim(library) > 0) then
         call material_library(to_lower(library), mat%mg, lib_shear, lib_yield, found)
         if (.not. found) call status%add(trim(where)//': library: '''//trim(library)// &
-            ''' is not a built-in material (valid: al6061, cu_ofhc, cu_taylor, ss304, be_verney)')
+            ''' is not a built-in material'//name_hint(library, LIBRARY_NAMES))
         if (found .and. units == UNITS_NONE) call status%add(trim(where)//': library: '''// &
             trim(library)//''' has data in cm-g-us-mbar; with &control units = ''none'' give '// &
             'every property yourself (or choose units = ''cm-g-us-mbar'' or ''si'')')
@@ -210,7 +215,21 @@ contains
           lib_yield = lib_yield * SI_PRESSURE
         end if
       end if
-      if (rho0 /= UNSET) mat%mg%rho0 = rho0
+      ! A rho0 far from the library's is the usual sign of mixed units.
+      ! (The library's value is kept then, so that the regions are checked
+      ! against it and not against the mistake.)
+      rho0_refused = .false.
+      if (rho0 /= UNSET .and. len_trim(library) > 0 .and. mat%mg%rho0 > 0.0_rk .and. &
+          rho0 > 0.0_rk) then
+        rho0_refused = rho0 >= DENSITY_FACTOR * mat%mg%rho0 .or. &
+            rho0 * DENSITY_FACTOR <= mat%mg%rho0
+        if (rho0_refused) call status%add(trim(where)//': rho0: '//brief_text(rho0)//' is '// &
+            density_ratio_text(rho0 / mat%mg%rho0)//' the rho0 '//brief_text(mat%mg%rho0)// &
+            ' of library '''//trim(library)//''' (in '//trim(units)//'), more than '// &
+            to_text(nint(DENSITY_FACTOR))//' times from it: expected about '// &
+            brief_text(mat%mg%rho0)//'; '//density_mistake(units, rho0 / mat%mg%rho0))
+      end if
+      if (rho0 /= UNSET .and. .not. rho0_refused) mat%mg%rho0 = rho0
       if (c0 /= UNSET) mat%mg%c0 = c0
       if (s1 /= UNSET) mat%mg%s1 = s1
       if (gamma0 /= UNSET) mat%mg%gamma0 = gamma0
@@ -487,7 +506,7 @@ contains
       call status%add(trim(where)//': material: required')
     else if (blocks(index)%material == 0 .and. materials_read) then
       call status%add(trim(where)//': material: '''//trim(material)// &
-          ''' is not a material of this deck')
+          ''' is not a material of this deck'//name_hint(material, materials%name))
     end if
   end subroutine read_block
 

@@ -49,7 +49,7 @@ module material_flow_stress
   !> Names accepted by sg_set.
   character(len=*), parameter, public :: SG_SET_NAMES = 'al6061, cu_ofhc, cu_taylor, ss304'
   !> Names accepted by jc_set.
-  character(len=*), parameter, public :: JC_SET_NAMES = 'cu_ofhc'
+  character(len=*), parameter, public :: JC_SET_NAMES = 'cu_ofhc, wha, steel_1006'
 
   !> Steinberg-Guinan parameters (cm-g-us-Mbar, K). The defaults mean unset.
   type, public :: steinberg_guinan_t
@@ -221,6 +221,14 @@ contains
     case ('cu_ofhc')
       m = johnson_cook_t(a=90.0e-5_rk, b=292.0e-5_rk, n=0.31_rk, c=0.025_rk, m=1.09_rk, &
           tm=1356.0_rk, tr=298.0_rk, eps_dot0=1.0e-6_rk, cv=0.383e-5_rk, rho0=8.96_rk)
+    case ('wha')
+      ! Johnson & Cook (1983), tungsten alloy (.07 Ni .03 Fe): recalled values.
+      m = johnson_cook_t(a=1506.0e-5_rk, b=177.0e-5_rk, n=0.12_rk, c=0.016_rk, m=1.00_rk, &
+          tm=1723.0_rk, tr=298.0_rk, eps_dot0=1.0e-6_rk, cv=0.134e-5_rk, rho0=17.0_rk)
+    case ('steel_1006')
+      ! Johnson & Cook (1983), 1006 steel: recalled values.
+      m = johnson_cook_t(a=350.0e-5_rk, b=275.0e-5_rk, n=0.36_rk, c=0.022_rk, m=1.00_rk, &
+          tm=1811.0_rk, tr=298.0_rk, eps_dot0=1.0e-6_rk, cv=0.452e-5_rk, rho0=7.89_rk)
     case default
       m = johnson_cook_t()
     end select

@@ -10,6 +10,14 @@ module material_table
   implicit none
   private
   public :: material_eos, material_energy_from_pressure, material_library, material_flow
+  public :: material_library_source
+
+  !> The built-in data sets, in the order `impact3d --materials` lists them.
+  character(len=*), parameter, public :: LIBRARY_NAMES(8) = [character(len=12) :: 'al6061', &
+      'cu_ofhc', 'cu_taylor', 'ss304', 'be_verney', 'wha', 'ti6al4v', 'steel_1006']
+  !> The same as one line, for messages.
+  character(len=*), parameter, public :: LIBRARY_LIST = 'al6061, cu_ofhc, cu_taylor, ss304, '// &
+      'be_verney, wha, ti6al4v, steel_1006'
 
   integer, parameter, public :: EOS_IDEAL_GAS = 1, EOS_MIE_GRUNEISEN = 2
   integer, parameter, public :: STRENGTH_NONE = 0, STRENGTH_ELASTIC_PLASTIC = 1
@@ -19,6 +27,7 @@ module material_table
   !> One material.
   type, public :: material_t
     character(len=MATERIAL_NAME_LEN) :: name = '' !< deck name
+    character(len=MATERIAL_NAME_LEN) :: library = '' !< built-in data set, '' for none
     integer :: eos = EOS_IDEAL_GAS !< EOS_* code
     real(rk) :: gamma = 1.4_rk !< ideal gas: ratio of specific heats
     type(mie_gruneisen_t) :: mg = mie_gruneisen_t(rho0=0.0_rk, c0=0.0_rk, s1=0.0_rk, &
@@ -183,11 +192,66 @@ contains
       mg = mie_gruneisen_t(rho0=1.845_rk, c0=0.800_rk, s1=1.124_rk, gamma0=1.11_rk, b=0.16_rk)
       shear = 1.51_rk
       yield = 0.0033_rk
+    case ('wha')
+      ! rho0: Johnson & Cook (1983), tungsten alloy (.07 Ni .03 Fe); c0, s1,
+      ! gamma0: Steinberg's pure tungsten (recalled, not the alloy's); no
+      ! shear modulus (give shear_modulus); Y0 = the Johnson-Cook A.
+      mg = mie_gruneisen_t(rho0=17.0_rk, c0=0.403_rk, s1=1.237_rk, gamma0=1.67_rk, b=0.0_rk)
+      shear = 0.0_rk
+      yield = 0.01506_rk
+    case ('ti6al4v')
+      ! rho0, c0, s1: Marsh (1980), LASL Shock Hugoniot Data; gamma0, G0, Y0:
+      ! Steinberg, UCRL-MA-106439 (recalled, unverified); b = 0 (not recalled).
+      mg = mie_gruneisen_t(rho0=4.419_rk, c0=0.513_rk, s1=1.028_rk, gamma0=1.23_rk, b=0.0_rk)
+      shear = 0.419_rk
+      yield = 0.0133_rk
+    case ('steel_1006')
+      ! rho0: Johnson & Cook (1983), 1006 steel; c0, s1, gamma0: the values in
+      ! common use for mild steel (primary source unconfirmed); G = 0.80 Mbar
+      ! (E = 207 GPa, nu = 0.29, handbook); Y0 = the Johnson-Cook A.
+      mg = mie_gruneisen_t(rho0=7.89_rk, c0=0.4569_rk, s1=1.49_rk, gamma0=2.17_rk, b=0.0_rk)
+      shear = 0.80_rk
+      yield = 0.0035_rk
     case default
       found = .false.
       shear = 0.0_rk
       yield = 0.0_rk
     end select
   end subroutine material_library
+
+  !> Where a built-in data set's values come from, value by value (also in
+  !> docs/problems.md, "Material data"); '' for an unknown name.
+  function material_library_source(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('al6061', 'cu_ofhc')
+      text = 'Steinberg, UCRL-MA-106439 (1991, Change 1 1996), EOS and Steinberg-Guinan rows; '// &
+          'checked against a published transcription of the report'
+    case ('cu_taylor')
+      text = 'cu_ofhc (Steinberg, UCRL-MA-106439) with Y0 = 0.00377 Mbar and beta = 1.6 '// &
+          'fitted to the Taylor slow shot of Eakins & Thadhani (this project)'
+    case ('ss304')
+      text = 'Steinberg, UCRL-MA-106439 and Steinberg, Cochran & Guinan, J. Appl. Phys. 51 '// &
+          '(1980) 1498: recalled values, not checked against a copy of either; c0 and s1 '// &
+          'agree with the recalled Marsh (1980) 304 SS fit'
+    case ('be_verney')
+      text = 'Verney problem: rho0, G0, Y0 as used by Verney; the rest recalled from '// &
+          'Steinberg, UCRL-MA-106439, unverified'
+    case ('wha')
+      text = 'rho0, Johnson-Cook A, B, n, C, m, Tm, cp: Johnson & Cook (1983), tungsten '// &
+          'alloy .07Ni .03Fe (recalled, unverified); c0, s1, gamma0: Steinberg''s pure '// &
+          'tungsten (recalled, not alloy data); no shear modulus'
+    case ('ti6al4v')
+      text = 'rho0, c0, s1: Marsh (1980), LASL Shock Hugoniot Data (recalled, unverified); '// &
+          'gamma0, G0, Y0: Steinberg, UCRL-MA-106439 (recalled, unverified); b = 0'
+    case ('steel_1006')
+      text = 'rho0, Johnson-Cook A, B, n, C, m, Tm, cp: Johnson & Cook (1983), 1006 steel '// &
+          '(recalled, unverified); c0, s1, gamma0: values in common use for mild steel '// &
+          '(primary source unconfirmed); G: E = 207 GPa, nu = 0.29 (handbook)'
+    case default
+      text = ''
+    end select
+  end function material_library_source
 
 end module material_table

@@ -47,6 +47,24 @@ def cmd_failure(args):
     if m:
         pos = [float(m.group(i)) for i in (2, 3, 4)]
         check("reported position is finite", all(abs(p) < 1e300 for p in pos), str(pos))
+    if args.zone_block is not None and m:
+        # The dt_min stop names the controlling zone's block, material,
+        # compression rho/rho0 and sound speed (issue 34).
+        z = re.search(r"^  zone (\d+): block '([^']*)', material '([^']*)', compression "
+                      r"rho/rho0 = (\S+) \(rho = (\S+)\), sound speed (\S+) ", err, re.M)
+        check("the zone line names block, material, rho/rho0 and sound speed", z is not None,
+              err[-2000:])
+        if z:
+            check("it is the zone of the stop", z.group(1) == m.group(1),
+                  f"{z.group(1)} vs {m.group(1)}")
+            check(f"block '{args.zone_block}', material '{args.zone_material}'",
+                  (z.group(2), z.group(3)) == (args.zone_block, args.zone_material),
+                  z.group(0))
+            ratio = float(z.group(4))
+            check(f"rho/rho0 = {ratio} is {args.zone_compression} to 1e-4",
+                  abs(ratio - args.zone_compression) <= 1e-4 * args.zone_compression,
+                  z.group(0))
+            check("sound speed > 0", float(z.group(6)) > 0.0, z.group(0))
     failed = glob.glob(os.path.join(wd, "*_failed.h5"))
     check("a final dump was written", len(failed) == 1, str(failed))
     if failed and m:
@@ -80,6 +98,10 @@ def register(sub, common):
     p.set_defaults(func=cmd_energy)
     p = sub.add_parser("failure", parents=[common], help="the failure path")
     p.add_argument("--expect", choices=["volume", "nan", "dt", "any"], default="volume")
+    p.add_argument("--zone-block", help="dt_min stop: the zone line's block")
+    p.add_argument("--zone-material", help="dt_min stop: the zone line's material")
+    p.add_argument("--zone-compression", type=float,
+                   help="dt_min stop: the zone line's rho/rho0 (to 1e-4)")
     p.set_defaults(func=cmd_failure)
     p = sub.add_parser("stability", parents=[common], help="ends cleanly, no NaN in a dump")
     p.set_defaults(func=cmd_stability)

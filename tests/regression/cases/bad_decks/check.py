@@ -161,7 +161,8 @@ def build_cases():
                   ["&contact(1): method: 'glue' is not a contact method (valid: dam, dlm)"]))
     c.append(Case("contact_unknown_surface",
                   append("&contact surface_a = 'xmax', surface_b = 'xlow', method = 'dlm' /\n"),
-                  ["&contact(1): surface_b: 'xlow' is not a face set of the mesh"]))
+                  ["&contact(1): surface_b: 'xlow' is not a face set of the mesh "
+                   "(valid: xmin, xmax, ymin, ymax, zmin, zmax; did you mean 'xmin'?)"]))
     c.append(Case("contact_form_unknown",
                   append("&contact surface_a = 'xmax', surface_b = 'xmin', method = 'dlm', "
                          "form = 'penalty' /\n"),
@@ -213,7 +214,8 @@ def build_cases():
                    "&mesh(2): name: required"]))
     c.append(Case("mesh_part_unknown_block",
                   sub("&mesh", "&mesh block = 'plate',"),
-                  ["&mesh: block: 'plate' is not the name of a &block"]))
+                  ["&mesh: block: 'plate' is not the name of a &block (valid: tube; "
+                   "did you mean 'tube'?)"]))
     c.append(Case("unknown_key_other_group",
                   sub("name = 'gas', eos", "name = 'gas', gama = 1.4, eos"),
                   ["&material: gama: unknown key on deck line 17; did you mean 'gamma'?",
@@ -398,7 +400,7 @@ def build_cases():
     c.append(Case("material_jc_no_library",
                   mat(mg + ", strength = 'johnson_cook', shear_modulus = 0.3"),
                   ["&material(1): %s: required for strength = 'johnson_cook' (or a library "
-                   "with Johnson-Cook data: cu_ofhc)" % k
+                   "with Johnson-Cook data: cu_ofhc, wha, steel_1006)" % k
                    for k in ["jc_a", "jc_b", "jc_n", "jc_c", "jc_m", "t_melt", "cv"]],
                   min_errors=7))
     c.append(Case("material_jc_shear_missing",
@@ -490,7 +492,8 @@ def build_cases():
                   expect_code=0, absent=["warning: &region(1)"]))
     # --- &block ----------------------------------------------------------------
     c.append(Case("block_unknown_material", sub("material = 'gas'", "material = 'air'"),
-                  ["&block(1): material: 'air' is not a material of this deck"]))
+                  ["&block(1): material: 'air' is not a material of this deck (valid: gas; "
+                   "did you mean 'gas'?)"]))
     c.append(Case("block_box_min_gt_max",
                   sub("name = 'tube', material = 'gas'",
                       "name = 'tube', material = 'gas', box = 1.0, 0.0, -1, 1, -1, 1"),
@@ -503,7 +506,8 @@ def build_cases():
     c.append(Case("region_unknown_block",
                   sub("  density = 1.0, pressure = 1.0,",
                       "  block = 'pipe', density = 1.0, pressure = 1.0,"),
-                  ["&region(1): block: 'pipe' is not a block of this deck"]))
+                  ["&region(1): block: 'pipe' is not a block of this deck (valid: tube; "
+                   "did you mean 'tube'?)"]))
     c.append(Case("region_energy_and_pressure",
                   sub("  density = 0.125, pressure = 0.1,",
                       "  density = 0.125, energy = 2.0, pressure = 0.1,"),
@@ -513,13 +517,16 @@ def build_cases():
                   ["&region(2): density: must be > 0"]))
     c.append(Case("region_no_density",
                   sub("  density = 0.125, pressure = 0.1,", "  energy = 2.0,"),
-                  ["&region: density: some zones get no density from any region"]))
+                  ["&region: density: 5 zones of block 'tube' get no density from any region, "
+                   "and their material 'gas' has no reference density (ideal gas)"],
+                  max_errors=1))
     c.append(Case("region_pressure_without_density",
                   sub("  density = 0.125, pressure = 0.1,", "  pressure = 0.1,"),
                   ["&region(2): pressure: needs density in the same region"]))
     # --- &boundary -------------------------------------------------------------
     c.append(Case("boundary_unknown_set", sub("set = 'xmax'", "set = 'xhigh'"),
-                  ["&boundary(2): set: 'xhigh' is not a face set", "valid: xmin"]))
+                  ["&boundary(2): set: 'xhigh' is not a face set",
+                   "(valid: xmin, xmax, ymin, ymax, zmin, zmax; did you mean 'xmin'?)"]))
     c.append(Case("boundary_unknown_type",
                   sub("set = 'xmax', type = 'symmetry'", "set = 'xmax', type = 'rigid'"),
                   ["&boundary(2): type: 'rigid' is not a boundary condition",
@@ -640,6 +647,76 @@ def build_cases():
                   ["deck: file", "no_such_deck.nml", "does not exist"],
                   deck_arg=lambda d, p: os.path.join(d, "no_such_deck.nml")))
     # --- sanity: the base deck itself runs -------------------------------------------
+    # --- unit mistakes and names (issue 34) -------------------------------------
+    al = "name = 'gas', eos = 'mie_gruneisen', library = 'al6061'"
+    al_regions = chain(sub(gas, al), sub("  density = 1.0, pressure = 1.0,",
+                                         "  density = 2.703, pressure = 1.0e-6,"),
+                       sub("  density = 0.125, pressure = 0.1,",
+                           "  density = 2.703, pressure = 1.0e-6,"))
+    c.append(Case("al_regions_valid", al_regions, [], expect_code=0))
+    c.append(Case("units_density_si",
+                  chain(al_regions, sub("  density = 2.703, pressure = 1.0e-6,",
+                                        "  density = 2703.0, pressure = 1.0e-6,")),
+                  ["&region(1): density: 2.7030E+03 is 1000 times the rho0 of material "
+                   "'gas' (rho0 = 2.7030E+00), more than 10 times from it: expected about the "
+                   "rho0; a density in kg/m^3 (SI) in a cm-g-us-mbar deck?"], max_errors=1))
+    c.append(Case("units_rho0_si", chain(al_regions, sub(al, al + ", rho0 = 2703.0")),
+                  ["&material(1): rho0: 2703.0 is 1000 times the rho0 2.7030 of library "
+                   "'al6061' (in cm-g-us-mbar), more than 10 times from it: expected about "
+                   "2.7030; a density in kg/m^3 (SI) in a cm-g-us-mbar deck?"], max_errors=1))
+    c.append(Case("units_density_within_10x_warns",
+                  chain(al_regions, sub("  density = 2.703, pressure = 1.0e-6,",
+                                        "  density = 5.0, pressure = 1.0e-6,")),
+                  ["warning: &region(1): density: 5.0000E+00 differs by more than 20%"],
+                  expect_code=0))
+    c.append(Case("units_velocity_m_per_s",
+                  sub("  density = 1.0, pressure = 1.0,",
+                      "  velocity = 800.0, 0.0, 0.0, density = 1.0, pressure = 1.0,"),
+                  ["&region(1): velocity: speed 800.00 is above 10 cm/us (100 km/s); impacts "
+                   "are below about 1 cm/us (10 km/s): a speed in m/s in a cm-g-us-mbar deck?",
+                   "&control allow_high_speed = .true."], max_errors=1))
+    c.append(Case("units_boundary_velocity_m_per_s",
+                  sub("&boundary set = 'xmin', type = 'symmetry' /",
+                      "&boundary set = 'xmin', type = 'velocity', velocity = 300.0, 0.0, 0.0 /"),
+                  ["&boundary(1): velocity: speed 300.00 is above 10 cm/us (100 km/s)"],
+                  max_errors=1))
+    c.append(Case("units_radial_field_too_fast",
+                  sub("  density = 1.0, pressure = 1.0,",
+                      "  radial_u0 = 5.0, radial_r0 = 1.0, radial_k = 2.0, "
+                      "center = -0.05, -0.05, -0.05, density = 1.0, pressure = 1.0,"),
+                  ["&region: radial_u0: the initial speed of node", ", above 10 cm/us"],
+                  max_errors=1))
+    c.append(Case("units_high_speed_allowed",
+                  chain(sub("  cfl = 0.5\n", "  cfl = 0.5\n  allow_high_speed = .true.\n"),
+                        sub("  density = 1.0, pressure = 1.0,",
+                            "  velocity = 800.0, 0.0, 0.0, density = 1.0, pressure = 1.0,"),
+                        sub("  t_end = 0.05\n", "  t_end = 1.0e-5\n")),
+                  [], expect_code=0))
+    c.append(Case("units_none_not_checked",
+                  chain(sub("  cfl = 0.5\n", "  cfl = 0.5\n  units = 'none'\n"),
+                        sub("  density = 1.0, pressure = 1.0,",
+                            "  velocity = 800.0, 0.0, 0.0, density = 1.0, pressure = 1.0,"),
+                        sub("  t_end = 0.05\n", "  t_end = 1.0e-5\n")),
+                  [], expect_code=0))
+    c.append(Case("default_density_from_rho0",
+                  chain(al_regions, sub("  density = 2.703, pressure = 1.0e-6,",
+                                        "  energy = 0.0,")),
+                  [], expect_code=0))
+    # Two independent errors, one in a group read with the deck (&boundary
+    # type) and one that used to wait for the mesh (&mesh block): one run
+    # reports both, and says what it could not check.
+    c.append(Case("two_independent_errors",
+                  chain(sub("set = 'xmax', type = 'symmetry'", "set = 'xmax', type = 'rigid'"),
+                        sub("&mesh", "&mesh block = 'tub',")),
+                  ["&boundary(2): type: 'rigid' is not a boundary condition",
+                   "&mesh: block: 'tub' is not the name of a &block (valid: tube; did you "
+                   "mean 'tube'?)",
+                   "impact3d: not checked because of the deck errors above: the mesh"],
+                  min_errors=2, max_errors=2))
+    c.append(Case("contact_unknown_surface_closest",
+                  append("&contact surface_a = 'zmaxx', surface_b = 'xmin', method = 'dam' /\n"),
+                  ["&contact(1): surface_a: 'zmaxx' is not a face set of the mesh (valid: "
+                   "xmin, xmax, ymin, ymax, zmin, zmax; did you mean 'zmax'?)"], max_errors=1))
     c.append(Case("valid_base_deck", lambda t: t, [], expect_code=0))
     return c
 

@@ -12,3 +12,8 @@ if(NOT (CMAKE_BUILD_TYPE STREQUAL "Debug" AND IMPACT3D_FPE_TRAPS))
   impact3d_check(failure/nan "regression;parallel" failure --workdir ${WORK}/fail_nan
     --deck ${CMAKE_CURRENT_LIST_DIR}/nan.nml --np 3 --expect nan)
 endif()
+# The dt_min stop (issue 34): the message names the controlling zone's block,
+# material, compression rho/rho0 (1.05 here) and sound speed.
+impact3d_check(failure/dt_min "regression;parallel" failure --workdir ${WORK}/fail_dt_min
+  --deck ${CMAKE_CURRENT_LIST_DIR}/dt_min.nml --np 2 --expect dt --zone-block box
+  --zone-material al --zone-compression 1.05)
