@@ -13,10 +13,11 @@ module app_setup
   use mesh_local, only: mesh_t, mesh_build_local
   use contact_surface, only: set_names_of
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS, HOURGLASS_NONE
-  use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain, boundary_prescribed
+  use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain, boundary_prescribed, &
+      BC_SYMMETRY, BC_WALL
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
-  use contact_enforce, only: contact_t, contact_setup
+  use contact_enforce, only: contact_t, contact_setup, side_context_t
   use contact_monitor, only: contact_initial
   use contact_state, only: initial_offsets_t
   use io_deck, only: config_t
@@ -52,6 +53,8 @@ contains
     type(status_t), intent(inout) :: status
     type(global_mesh_t) :: global
     type(initial_offsets_t), allocatable :: offsets(:)
+    real(rk), allocatable :: pair_work(:)
+    type(side_context_t) :: sides
     logical :: exists
     if (len_trim(restart) > 0) then
       exists = .false.
@@ -63,21 +66,27 @@ contains
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, bc, status)
     if (.not. status%ok()) return
-    if (size(config%contacts) > 0) call contact_initial(config%contacts, global, &
-        bc%symmetry_planes, offsets, status)
+    ! Surfaces given by blocks: the deck's blocks, and the face sets that
+    ! never form one (symmetry planes, rigid walls).
+    sides%block_names = config%blocks(:)%name
+    sides%closed_sets = pack(config%boundaries(:)%set, config%boundaries(:)%kind == BC_SYMMETRY &
+        .or. config%boundaries(:)%kind == BC_WALL)
+    if (size(config%contacts) > 0) call contact_initial(config%contacts, global, mesh, &
+        bc%symmetry_planes, offsets, status, sides)
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
     if (status%ok()) call probe_setup(config%probes, global, mesh, config%output%directory, &
         config%units, probes, status)
     if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
-        status, offsets, bc%symmetry_planes, boundary_prescribed(bc, size(state%node_mass)))
+        status, offsets, bc%symmetry_planes, boundary_prescribed(bc, size(state%node_mass)), &
+        sides)
     if (.not. status%ok()) return
     call global%free()
-    allocate(state%contact_pair_work(ct%npair), source=0.0_rk)
     if (len_trim(restart) > 0) then
       call timers%start('restart read')
-      call dump_read(restart, mesh, state, status)
-      ! The contact work of each interface goes on from the dump's.
-      if (ct%npair > 0) ct%pairs(:)%work = state%contact_pair_work
+      ! The contact work (and each interface's) goes on from the dump's.
+      pair_work = ct%pairs(:)%work
+      call dump_read(restart, mesh, state, status, ct%work, pair_work)
+      ct%pairs(:)%work = pair_work
       call timers%stop('restart read')
     end if
   end subroutine setup_run
@@ -295,6 +304,8 @@ contains
       names = set_names_of(list)
       if (size(names) == 0) call status%add(trim(where)//': '//key//': no face set named')
       do i = 1, size(names)
+        ! (block:NAME entries: contact_setup checks the block names)
+        if (index(names(i), 'block:') == 1) cycle
         if (global%find_set(names(i)) == 0) call status%add(trim(where)//': '//key//': '''// &
             trim(names(i))//''' is not a face set of the mesh')
       end do

@@ -49,14 +49,14 @@ module contact_enforce
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_node_index, set_names_of
-  use contact_records, only: records_t, take, send_records, sum_records
+  use contact_records, only: records_t, take, send_records
   use contact_search, only: find_key
-  use contact_state, only: METHOD_DAM, METHOD_DLM, FORM_COORDINATE, FORM_VELOCITY, &
-      RIGID_MASS_FACTOR, FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, &
-      contact_spec_t, surface_geometry_t, selection_t, contact_t, initial_offsets_t, step_sums_t
+  use contact_state, only: RIGID_MASS_FACTOR, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, &
+      SURFACE_LEN, contact_spec_t, surface_geometry_t, selection_t, contact_t, &
+      initial_offsets_t, step_sums_t, contact_method_t, method_slot_t
   use contact_audit, only: surface_sagitta, audit_reach
-  use contact_dlm, only: dlm_step, dlm_cover, DLM_DEFAULT_RECOVERY
-  use contact_dam, only: dam_exchange, dam_put_back, match_masters, dam_forces
+  use contact_factory, only: contact_method_new
+  use contact_sides, only: side_context_t, side_surface
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
@@ -66,12 +66,19 @@ module contact_enforce
   public :: contact_report
   ! The state the application and the deck reader see.
   public :: CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, contact_t
+  public :: side_context_t
+
+  !> Per-node values of the owners' last round, on this part (ncn).
+  type :: inflow_t
+    real(rk), allocatable :: v(:, :, :)
+  end type inflow_t
 
 contains
 
   !> Build the contact surfaces in contact-index space, the owned-node map and
   !> the nodal masses. Problems go to status (group, key, reason).
-  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets, planes, rigid)
+  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets, planes, rigid, &
+      context)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
@@ -84,12 +91,16 @@ contains
     real(rk), intent(in), optional :: planes(:, :)
     !> (nnode local) nodes whose motion is prescribed: rigid for the contact
     logical, intent(in), optional :: rigid(:)
+    !> the deck's blocks and closed face sets, for surfaces given by blocks
+    type(side_context_t), intent(in), optional :: context
+    type(side_context_t) :: sides
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
     integer(i8), allocatable :: all(:)
     real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
     integer :: k, n, i, m, count_all
-    character(len=16) :: where
-    character(len=SURFACE_LEN) :: master_set, slave_set
+    character(len=SURFACE_LEN) :: side_a, side_b
+    type(method_slot_t), allocatable :: methods(:)
+    logical, allocatable :: single(:)
 
     if (present(planes)) then
       ct%planes = planes
@@ -97,53 +108,42 @@ contains
       allocate(ct%planes(4, 0))
     end if
     ct%ndeck = size(specs)
-    ct%npair = ct%ndeck + count(specs%symmetric .and. specs%method == 'dam')
+    if (present(context)) then
+      sides = context
+    else
+      allocate(sides%block_names(0), sides%closed_sets(0))
+    end if
+    ! The methods first: each may add a reverse pass after the deck's.
+    allocate(methods(ct%ndeck), single(ct%ndeck))
+    ct%npair = ct%ndeck
+    do k = 1, ct%ndeck
+      call contact_method_new(specs(k), .false., methods(k)%method, single(k))
+      if (methods(k)%method%reverse_pass()) ct%npair = ct%npair + 1
+    end do
     allocate(ct%pairs(ct%npair), raw_a(ct%npair), raw_b(ct%npair))
     if (ct%npair == 0) return
     m = ct%ndeck
     do k = 1, ct%ndeck
-      write(where, '(a,i0,a)') '&contact(', k, ')'
       associate(p => ct%pairs(k))
         p%spec = specs(k)
         p%self = specs(k)%surface_a == specs(k)%surface_b
-        select case (specs(k)%method)
-        case ('dam')
-          p%method = METHOD_DAM
-        case default
-          p%method = METHOD_DLM
-        end select
-        select case (specs(k)%form)
-        case ('coordinate')
-          p%form = FORM_COORDINATE
-        case ('combined')
-          p%form = FORM_COMBINED
-        case default
-          p%form = FORM_VELOCITY
-        end select
-        p%recovery = DLM_DEFAULT_RECOVERY
-        p%slave_normal = specs(k)%normal == 'slave'
-        if (specs(k)%recovery >= 0.0_rk) p%recovery = specs(k)%recovery
-        ! For DAM, b is the master side.
-        slave_set = specs(k)%surface_a
-        master_set = specs(k)%surface_b
-        if (p%method == METHOD_DAM .and. specs(k)%master == 'a') then
-          slave_set = specs(k)%surface_b
-          master_set = specs(k)%surface_a
-        end if
-        call surface_build(global, set_names_of(slave_set), raw_a(k), status)
-        call surface_build(global, set_names_of(master_set), raw_b(k), status)
-        if (p%method == METHOD_DAM .and. specs(k)%symmetric) then
+        p%single_part = single(k)
+        call move_alloc(methods(k)%method, p%method)
+        ! The method's sides: for DAM, b is the master side.
+        call p%method%sides(specs(k), side_a, side_b)
+        call side_surface(side_a, side_b, global, mesh, sides, 'contact '''// &
+            trim(specs(k)%name)//'''', raw_a(k), status)
+        call side_surface(side_b, side_a, global, mesh, sides, 'contact '''// &
+            trim(specs(k)%name)//'''', raw_b(k), status)
+        if (p%method%reverse_pass()) then
           ! The reverse pass: the same interface with the sides swapped.
           m = m + 1
           p%mirror = m
-          ct%pairs(m) = p
-          ct%pairs(m)%mirror = 0
+          ct%pairs(m)%spec = p%spec
+          ct%pairs(m)%self = p%self
           ct%pairs(m)%mirror_of = k
-          ! Its contact normal is its slave's own (the deck master's): the
-          ! first pass's master edges and corners lead here, and the normal
-          ! at an edge's projection tilts toward the edge and would move
-          ! the slave along the surface (docs/contact.md, 6.2).
-          ct%pairs(m)%slave_normal = .true.
+          call contact_method_new(specs(k), .true., ct%pairs(m)%method, &
+              ct%pairs(m)%single_part)
           raw_a(m) = raw_b(k)
           raw_b(m) = raw_a(k)
         end if
@@ -174,8 +174,6 @@ contains
       call renumber(raw_b(k), ct%pairs(k)%all_b)
       ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
           median_size(xc, ct%pairs(k)%all_b))
-      ct%pairs(k)%single_part = ct%pairs(k)%method == METHOD_DLM .and. &
-          ct%pairs(k)%spec%sweeps > 1
     end do
 
     ! Owned contact nodes of this rank; masses and owners of all.
@@ -216,8 +214,9 @@ contains
     ! reaction is the boundary's work).
     ct%all_rigid = packed(3, :) > 0.5_rk
     where (ct%all_rigid) ct%all_mass = RIGID_MASS_FACTOR * ct%all_mass
-    allocate(ct%fc(3, ct%nown))
+    allocate(ct%fc(3, ct%nown), ct%node_gap(size(node_mass)))
     ct%fc = 0.0_rk
+    ct%node_gap = 0.0_rk
     call segment_homes(ct, mesh)
     do k = 1, ct%npair
       allocate(ct%pairs(k)%was_active(ct%nown))
@@ -307,8 +306,8 @@ contains
         real(rk) :: t
       end function wall_clock
     end interface
-    real(rk), allocatable :: fck(:, :, :), vmatch(:, :, :), vm_local(:, :, :)
-    logical, allocatable :: has(:, :), touched(:, :)
+    real(rk), allocatable :: fck(:, :, :)
+    logical, allocatable :: has(:, :)
     real(rk) :: t0, speed
     type(selection_t), allocatable :: sel(:)
     integer :: i, k
@@ -339,7 +338,7 @@ contains
     ct%fc = 0.0_rk
     call stage_round(1, ct%ndeck)
     if (ct%npair > ct%ndeck) then
-      ! DAM's reverse passes (symmetric = .true.), master and slave swapped,
+      ! The reverse passes (DAM symmetric = .true.), master and slave swapped,
       ! start from the force with the deck interfaces' contact forces in it:
       ! where the first pass matched the two sides nothing is left to do,
       ! and master nodes that cross the slave surface are caught.
@@ -360,67 +359,49 @@ contains
 
   contains
 
-    !> The interfaces first..last in one round: the methods on the parts, the
-    !> owners' sums, and their contact forces added to force and ct%fc.
+    !> The interfaces first..last in one round: each method's rounds on the
+    !> parts and at the owners (contact_method_t), and their contact forces
+    !> added to force and ct%fc.
     subroutine stage_round(first, last)
       integer, intent(in) :: first, last
-      type(records_t) :: dlm_out, dam_out, putback, cover_out
-      real(rk), allocatable :: cover(:, :, :), cover_local(:, :, :)
-      logical, allocatable :: covered(:, :)
+      type(records_t), allocatable :: out(:)
+      type(inflow_t), allocatable :: inflow(:)
+      real(rk), allocatable :: values(:, :, :)
       real(rk) :: fsum(3)
-      logical :: any_dam, any_dlm
-      call take(ct%kept(1), dlm_out, 3)
-      call take(ct%kept(2), dam_out, 10)
-      call take(ct%kept(3), putback, 3)
-      call take(ct%kept(4), cover_out, 1)
-      any_dam = .false.
-      any_dlm = any(ct%pairs(first:last)%method == METHOD_DLM)
-      if (any_dlm) then
-        ! DLM's first round: each node's shares over its gated pairs, summed
-        ! by the owners in key order and sent back to the parts.
-        do k = first, last
-          if (ct%pairs(k)%method == METHOD_DLM) call dlm_cover(ct, ct%pairs(k), k, dt, &
-              final, cover_out)
-        end do
-        call lap(ct%enforce_seconds)
-        call send_records(cover_out, ct%all_owner, ct%own_of, ct%nown)
-        allocate(cover(1, ct%nown, ct%npair), covered(ct%nown, ct%npair))
-        cover = 0.0_rk
-        covered = .false.
-        call sum_records(cover_out, cover, covered)
-        call scatter_nodes(ct, cover, cover_local)
-        call lap(ct%migrate_seconds)
-      end if
+      integer :: r, nround
+      allocate(out(first:last), inflow(first:last))
+      nround = 0
       do k = first, last
+        nround = max(nround, ct%pairs(k)%method%rounds())
         ct%pairs(k)%sums = step_sums_t()
-        select case (ct%pairs(k)%method)
-        case (METHOD_DLM)
-          call dlm_step(ct, ct%pairs(k), k, dt, cover_local(1, :, k), dlm_out)
-        case (METHOD_DAM)
-          any_dam = .true.
-          call dam_exchange(ct, ct%pairs(k), k, dt, final, dam_out)
-        end select
+        allocate(inflow(k)%v(0, 0, 1))
       end do
-      call lap(ct%enforce_seconds)
-
-      ! The owners: sums in key order.
-      call send_records(dlm_out, ct%all_owner, ct%own_of, ct%nown)
-      call sum_records(dlm_out, fck, has)
-      if (any_dam) then
-        call send_records(dam_out, ct%all_owner, ct%own_of, ct%nown)
-        if (.not. allocated(vmatch)) allocate(vmatch(7, ct%nown, ct%npair), &
-            touched(ct%nown, ct%npair))
-        call match_masters(ct, dam_out, v_old, force, dt, vmatch, touched)
-        call scatter_nodes(ct, vmatch, vm_local)
-        call lap(ct%migrate_seconds)
+      do r = 1, nround
+        ! The parts: each interface's records for the owners.
         do k = first, last
-          if (ct%pairs(k)%method == METHOD_DAM) call dam_put_back(ct, ct%pairs(k), k, dt, &
-              vm_local(1:3, :, k), vm_local(4:6, :, k), vm_local(7, :, k), putback)
+          associate(p => ct%pairs(k))
+            if (r > p%method%rounds()) cycle
+            call take(p%method%kept(r), out(k), p%method%record_width(r))
+            call p%method%part_round(ct, p, k, r, dt, final, inflow(k)%v(:, :, 1), &
+                out(k))
+          end associate
         end do
         call lap(ct%enforce_seconds)
-        call send_records(putback, ct%all_owner, ct%own_of, ct%nown)
-        call dam_forces(ct, first, last, putback, v_old, force, dt, vmatch, touched, fck, has)
-      end if
+        ! The owners: sums in key order; values for the next round to the parts.
+        do k = first, last
+          associate(p => ct%pairs(k))
+            if (r > p%method%rounds()) cycle
+            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown)
+            allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
+            call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
+                fck(:, :, k), has(:, k))
+            if (r < p%method%rounds()) call scatter_nodes(ct, values, inflow(k)%v)
+            deallocate(values)
+            call take(out(k), p%method%kept(r), p%method%record_width(r))
+          end associate
+        end do
+        call lap(ct%migrate_seconds)
+      end do
       do i = 1, ct%nown
         if (ct%all_rigid(ct%own_contact(i))) then
           ! Prescribed motion: the boundary holds the node (contact_setup).
@@ -434,10 +415,6 @@ contains
         ct%fc(:, i) = ct%fc(:, i) + fsum
         force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + fsum
       end do
-      call take(dlm_out, ct%kept(1), 3)
-      call take(dam_out, ct%kept(2), 10)
-      call take(putback, ct%kept(3), 3)
-      call take(cover_out, ct%kept(4), 1)
     end subroutine stage_round
 
     subroutine lap(total)
@@ -460,7 +437,6 @@ contains
     integer :: k
     do k = 1, ct%npair
       associate(p => ct%pairs(k), s => ct%pairs(k)%sums)
-        if (p%method == METHOD_DLM) s%dmom = dt * s%dmom
         sums = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
             real(count(p%was_active .and. .not. has(:, k)), rk)]
         p%was_active = has(:, k)
@@ -468,21 +444,17 @@ contains
         p%pen_sq = sums(3)
         p%pen_weight = sums(4)
         pen_max = par_max(s%pen_max)
-        ! pen_rms: over the overlap area (DLM) or the penetrating slaves (DAM).
-        if (p%method == METHOD_DLM) then
-          p%diag(1:8) = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), tiny(1.0_rk))), &
-              sums(8), sums(5:7)]
-        else
-          p%diag(1:8) = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), 1.0_rk)), &
-              sums(8), sums(5:7)]
-        end if
+        ! pen_rms: over the method's weights (DLM: overlap area, DAM: slaves).
+        p%diag(1:8) = [sums(1), sums(2), pen_max, p%method%pen_rms(sums(3), sums(4)), &
+            sums(8), sums(5:7)]
       end associate
     end do
   end subroutine reduce_diagnostics
 
 
   !> After the velocity update: the work of the contact forces over the step
-  !> on the owned nodes (local sum; the caller reduces it).
+  !> on the owned nodes (local sum; contact_step_end reduces it). Nothing
+  !> without an interface.
   subroutine contact_work_update(ct, v_old, v_new, dt, work)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: v_old(:, :), v_new(:, :)
@@ -514,6 +486,7 @@ contains
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
     real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit
     integer :: largest, smallest, k
+    if (ct%npair == 0) return
     search = par_max(ct%search_seconds)
     enforce = par_max(ct%enforce_seconds)
     migrate = par_max(ct%migrate_seconds)
@@ -533,10 +506,7 @@ contains
         whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b)
         local = local + surface_bytes(p%a) + surface_bytes(p%b) + geometry_bytes(p%ga) + &
             geometry_bytes(p%gb)
-        if (allocated(p%fp_node)) local = local + real(9 * size(p%fp_pen), rk) * 8.0_rk + &
-            real(size(p%fp_node), rk) * 4.0_rk + real(size(p%fp_key), rk) * 8.0_rk
-        if (allocated(p%ex_real)) local = local + real(size(p%ex_real), rk) * 8.0_rk + &
-            real(size(p%ex_master), rk) * 4.0_rk
+        local = local + p%method%bytes()
       end associate
     end do
     whole = par_max(whole)
