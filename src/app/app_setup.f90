@@ -76,7 +76,8 @@ contains
     if (status%ok()) call setup_state(config, global, mesh, bc, state, mz, status)
     if (status%ok()) call probe_setup(config%probes, global, mesh, config%output%directory, &
         config%units, probes, status)
-    if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_mass, ct, &
+    if (status%ok()) call contact_setup(config%contacts, global, mesh, state%node_position, &
+        state%node_mass, ct, &
         status, offsets, bc%symmetry_planes, boundary_prescribed(bc, size(state%node_mass)), &
         sides)
     if (.not. status%ok()) return

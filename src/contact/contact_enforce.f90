@@ -56,13 +56,13 @@ module contact_enforce
       initial_offsets_t, step_sums_t, contact_method_t, method_slot_t
   use contact_audit, only: surface_sagitta, audit_reach
   use contact_factory, only: contact_method_new
-  use contact_sides, only: side_context_t, side_surface
+  use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
   implicit none
   private
-  public :: contact_setup, contact_apply, contact_work_update
+  public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
   public :: contact_report
   ! The state the application and the deck reader see.
   public :: CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, contact_t
@@ -77,11 +77,12 @@ contains
 
   !> Build the contact surfaces in contact-index space, the owned-node map and
   !> the nodal masses. Problems go to status (group, key, reason).
-  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets, planes, rigid, &
-      context)
+  subroutine contact_setup(specs, global, mesh, x, node_mass, ct, status, offsets, planes, &
+      rigid, context)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local) node positions
     real(rk), intent(in) :: node_mass(:) !< (nnode local) nodal masses
     type(contact_t), intent(inout) :: ct
     type(status_t), intent(inout) :: status
@@ -95,9 +96,7 @@ contains
     type(side_context_t), intent(in), optional :: context
     type(side_context_t) :: sides
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
-    integer(i8), allocatable :: all(:)
-    real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
-    integer :: k, n, i, m, count_all
+    integer :: k, m
     character(len=SURFACE_LEN) :: side_a, side_b
     type(method_slot_t), allocatable :: methods(:)
     logical, allocatable :: single(:)
@@ -151,6 +150,130 @@ contains
     end do
     if (.not. status%ok()) return
 
+    call index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, offsets=offsets)
+    allocate(ct%node_gap(size(node_mass)))
+    ct%node_gap = 0.0_rk
+
+  end subroutine contact_setup
+
+  !> Surfaces that change during a run: every deck interface whose sides
+  !> name blocks gets them again from the exterior faces of the zones live
+  !> now (contact_surface_rebuild on each rank's local mesh; live covers
+  !> the ghost zones, refreshed by the caller through the zone halo); sides
+  !> given by face sets keep their faces. The contact index space, owned
+  !> nodes, segment homes and RCB key nodes follow; each node keeps its
+  !> initial offset (a new node has none); sagittas and reach are taken at
+  !> x; a global search and RCB run at the next stage (contact_apply), and
+  !> the audit after it. The work of each interface goes on. Collective.
+  subroutine contact_surface_refresh(ct, mesh, x, node_mass, live, context, rigid)
+    type(contact_t), intent(inout) :: ct
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local) node positions
+    real(rk), intent(in) :: node_mass(:) !< (nnode local)
+    logical, intent(in) :: live(:) !< (nzone local) zones live, ghosts included
+    type(side_context_t), intent(in) :: context
+    logical, intent(in), optional :: rigid(:) !< (nnode local) prescribed motion
+    type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
+    type(status_t) :: status
+    integer(i8), allocatable :: old_gid(:)
+    real(rk), allocatable :: old_offset(:, :)
+    character(len=SURFACE_LEN) :: side_a, side_b
+    integer :: k, m
+
+    if (ct%npair == 0) return
+    allocate(raw_a(ct%npair), raw_b(ct%npair), old_offset(ct%nall, ct%npair))
+    do k = 1, ct%ndeck
+      associate(p => ct%pairs(k))
+        call p%method%sides(p%spec, side_a, side_b)
+        call side_raw(side_a, side_b, p%all_a, raw_a(k))
+        call side_raw(side_b, side_a, p%all_b, raw_b(k))
+        m = p%mirror
+        if (m > 0) then
+          raw_a(m) = raw_b(k)
+          raw_b(m) = raw_a(k)
+        end if
+      end associate
+    end do
+    if (.not. status%ok()) error stop 'contact_surface_refresh: the deck''s blocks changed'
+    call move_alloc(ct%all_gid, old_gid)
+    do k = 1, ct%npair
+      old_offset(:, k) = ct%pairs(k)%offset
+    end do
+    call forget_index(ct)
+    call index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, old_gid=old_gid, &
+        old_offset=old_offset)
+    ! The next stage searches again on the new surfaces.
+    ct%next_search = 0
+    if (allocated(ct%all_of)) deallocate(ct%all_of)
+    ct%audit_due = .true.
+
+  contains
+
+    !> A side's surface in global node ids: rebuilt from blocks, or as it is.
+    subroutine side_raw(list, other, current, raw)
+      character(len=*), intent(in) :: list, other
+      type(contact_surface_t), intent(in) :: current
+      type(contact_surface_t), intent(inout) :: raw
+      integer, allocatable :: blocks(:), facing(:)
+      integer(i8), allocatable :: ids(:)
+      integer(ik), allocatable :: nodes(:, :)
+      integer :: i
+      if (.not. side_is_blocks(list)) then
+        allocate(nodes(4, current%nseg))
+        do i = 1, current%nseg
+          nodes(:, i) = int(ct%all_gid(current%segments(:, i)), ik)
+        end do
+        call surface_from_segments(nodes, current%segment_id, surf=raw)
+        return
+      end if
+      call blocks_of(list, context, 'contact refresh', blocks, status)
+      allocate(facing(0))
+      if (side_is_blocks(other) .and. other /= list) then
+        call blocks_of(other, context, 'contact refresh', facing, status)
+        facing = pack(facing, [(all(blocks /= facing(i)), i = 1, size(facing))])
+      end if
+      call block_faces(mesh, live, blocks, facing, context, ids, nodes)
+      call surface_from_segments(nodes, ids, surf=raw)
+    end subroutine side_raw
+
+  end subroutine contact_surface_refresh
+
+  !> Release what index_surfaces builds (before a refresh builds it again).
+  subroutine forget_index(ct)
+    type(contact_t), intent(inout) :: ct
+    integer :: k
+    deallocate(ct%own_contact, ct%own_local, ct%own_of, ct%fc, ct%gap_own, ct%key_capable, &
+        ct%xs)
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        deallocate(p%was_active, p%offset, p%own_in_a, p%fc_own, p%own_slave)
+        call p%all_a%free()
+        call p%all_b%free()
+      end associate
+    end do
+  end subroutine forget_index
+
+  !> The contact index space of the interfaces' surfaces raw_a, raw_b
+  !> (global node ids): every contact node by global id, the surfaces in it,
+  !> the owned nodes, masses, owners and positions (from the owners: x),
+  !> segment homes, and the audit's offsets, sagittas (at x) and reach.
+  !> offsets: the set-up's initial offsets per surface node; old_gid,
+  !> old_offset: a refresh's previous contact nodes and their offsets per
+  !> interface. Collective.
+  subroutine index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, offsets, old_gid, &
+      old_offset)
+    type(contact_t), intent(inout) :: ct
+    type(contact_surface_t), intent(in) :: raw_a(:), raw_b(:)
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :), node_mass(:)
+    logical, intent(in), optional :: rigid(:)
+    type(initial_offsets_t), intent(in), optional :: offsets(:)
+    integer(i8), intent(in), optional :: old_gid(:)
+    real(rk), intent(in), optional :: old_offset(:, :) !< (size(old_gid), npair)
+    integer(i8), allocatable :: all(:)
+    real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
+    integer :: k, n, i, c, count_all
+
     ! Contact nodes: every node of every surface, by global id.
     count_all = 0
     do k = 1, ct%npair
@@ -167,16 +290,8 @@ contains
     call sort_unique(all)
     ct%nall = size(all)
     call move_alloc(all, ct%all_gid)
-    allocate(xc(3, ct%nall))
-    xc = global%coordinates(:, ct%all_gid)
-    do k = 1, ct%npair
-      call renumber(raw_a(k), ct%pairs(k)%all_a)
-      call renumber(raw_b(k), ct%pairs(k)%all_b)
-      ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
-          median_size(xc, ct%pairs(k)%all_b))
-    end do
 
-    ! Owned contact nodes of this rank; masses and owners of all.
+    ! Owned contact nodes of this rank; masses, owners and positions of all.
     ct%nown = 0
     allocate(ct%own_contact(mesh%nnode_owned), ct%own_local(mesh%nnode_owned))
     do n = 1, mesh%nnode_owned
@@ -193,7 +308,7 @@ contains
     do i = 1, ct%nown
       ct%own_of(ct%own_contact(i)) = i
     end do
-    allocate(packed(3, ct%nall))
+    allocate(packed(6, ct%nall))
     packed = 0.0_rk
     do i = 1, ct%nown
       packed(1, ct%own_contact(i)) = node_mass(ct%own_local(i))
@@ -201,11 +316,20 @@ contains
       if (present(rigid)) then
         if (rigid(ct%own_local(i))) packed(3, ct%own_contact(i)) = 1.0_rk
       end if
+      packed(4:6, ct%own_contact(i)) = x(:, ct%own_local(i))
     end do
-    allocate(flat(3 * ct%nall))
-    flat = reshape(packed, [3 * ct%nall])
+    allocate(flat(6 * ct%nall))
+    flat = reshape(packed, [6 * ct%nall])
     call par_sum_array(flat)
-    packed = reshape(flat, [3, ct%nall])
+    packed = reshape(flat, [6, ct%nall])
+    ! (one owner each, zero elsewhere: the sums are the owners' values)
+    xc = packed(4:6, :)
+    do k = 1, ct%npair
+      call renumber(raw_a(k), ct%pairs(k)%all_a)
+      call renumber(raw_b(k), ct%pairs(k)%all_b)
+      ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
+          median_size(xc, ct%pairs(k)%all_b))
+    end do
     ct%all_mass = packed(1, :)
     ct%all_owner = nint(packed(2, :))
     ! A node whose motion is prescribed is rigid for the contact: its mass is
@@ -214,9 +338,8 @@ contains
     ! reaction is the boundary's work).
     ct%all_rigid = packed(3, :) > 0.5_rk
     where (ct%all_rigid) ct%all_mass = RIGID_MASS_FACTOR * ct%all_mass
-    allocate(ct%fc(3, ct%nown), ct%node_gap(size(node_mass)))
+    allocate(ct%fc(3, ct%nown))
     ct%fc = 0.0_rk
-    ct%node_gap = 0.0_rk
     call segment_homes(ct, mesh)
     do k = 1, ct%npair
       allocate(ct%pairs(k)%was_active(ct%nown))
@@ -237,6 +360,13 @@ contains
           end do
           do i = 1, p%all_b%nnode
             p%offset(p%all_b%nodes(i)) = max(p%offset(p%all_b%nodes(i)), offsets(k)%b(i))
+          end do
+        end if
+        ! A refresh keeps each node's offset (by global id; a new node has none).
+        if (present(old_gid) .and. p%mirror_of == 0) then
+          do i = 1, ct%nall
+            c = find_key(old_gid, ct%all_gid(i))
+            if (c > 0) p%offset(i) = old_offset(c, k)
           end do
         end if
         ! A reverse pass keeps the initial penetration of its deck interface
@@ -267,7 +397,8 @@ contains
       call surface_from_segments(segments, raw%segment_id, xc, surf)
     end subroutine renumber
 
-  end subroutine contact_setup
+  end subroutine index_surfaces
+
 
   !> Median of the longest segment edge over a surface.
   function median_size(x, surf) result(h)

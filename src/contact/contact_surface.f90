@@ -212,7 +212,8 @@ contains
   subroutine surface_from_segments(segments, segment_id, x, surf)
     integer(ik), intent(in) :: segments(:, :) !< (4, nseg) global node ids
     integer(i8), intent(in) :: segment_id(:) !< (nseg) global ids, for tie-breaking
-    real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
+    !> (3, nnode) node positions (absent: no edge flags, every edge convex)
+    real(rk), intent(in), optional :: x(:, :)
     type(contact_surface_t), intent(inout) :: surf
     integer, allocatable :: local(:), fill(:)
     integer :: nseg, s, k, n, max_id
@@ -269,7 +270,11 @@ contains
         surf%neighbours(k, s) = find_neighbour(s, segments(k, s), segments(edge_end(k), s))
       end do
     end do
-    call surface_update_edges(surf, x)
+    if (present(x)) then
+      call surface_update_edges(surf, x)
+    else
+      surf%edge_convex = .true.
+    end if
 
   contains
 
