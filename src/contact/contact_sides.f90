@@ -126,6 +126,7 @@ contains
     integer(i8), allocatable :: ids(:)
     integer(ik), allocatable :: nodes(:, :)
     logical, allocatable :: live(:)
+    type(status_t) :: other_status
     integer :: i
     if (.not. side_is_blocks(list)) then
       call surface_build(global, set_names_of(list), surf, status)
@@ -134,7 +135,8 @@ contains
     call blocks_of(list, context, where, blocks, status)
     allocate(facing(0))
     if (side_is_blocks(other) .and. other /= list) then
-      call blocks_of(other, context, where, facing, status)
+      ! (the other side's problems are reported with the other side)
+      call blocks_of(other, context, where, facing, other_status)
       facing = pack(facing, [(all(blocks /= facing(i)), i = 1, size(facing))])
     end if
     if (.not. status%ok()) return
