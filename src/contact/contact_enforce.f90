@@ -4,7 +4,11 @@
 !> (2014) 247-285), as described in docs/contact.md, sections 5-6: set-up,
 !> the rounds of a stage (search, migration, the methods on the RCB parts,
 !> the owners' sums) and the diagnostics. This is the narrow interface
-!> between the hydro state and contact.
+!> between the hydro state and contact. The methods are types
+!> (contact_method_t, made by contact_factory): this driver runs their
+!> rounds and never asks which method it runs. Set-up and
+!> contact_surface_refresh (surfaces given by blocks, rebuilt from the live
+!> zones) share index_surfaces, the contact index space.
 !>
 !> Where it sits. In each stage, after the hydro forces f of the stage are
 !> known and before v = v^n + h (f + fc)/m (h = dt/2 in the predictor, dt in
