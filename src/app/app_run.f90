@@ -12,6 +12,7 @@ module app_run
   use hydro_boundary, only: boundary_t
   use hydro_driver, only: material_zones_t, hydro_zone_update
   use contact_enforce, only: contact_t, contact_report
+  use contact_monitor, only: contact_audit_due
   use solver_step, only: solver_cycle, solver_audit
   use solver_schedule, only: schedule_t
   use solver_fault, only: inject_nan, inject_tangle
@@ -120,11 +121,7 @@ contains
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
     call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl)
-    if (ct%npair > 0) then
-      allocate(state%node_contact_gap(size(state%node_position, 2)))
-      state%node_contact_gap = 0.0_rk
-      call solver_audit(ct, state, timers)
-    end if
+    if (contact_audit_due(ct, .true.)) call solver_audit(ct, state, timers)
     ! The positions at t = 0 (a restart has them from its dump): the dumps'
     ! displacement.
     if (.not. allocated(state%node_position_initial)) &
@@ -209,7 +206,7 @@ contains
         wall_limit=config%wall_limit)
     call plan%start(state%time)
     if (.not. restarted) then
-      call output_dump(config, mesh, state, 'initial', wall_start, timers, ok)
+      call output_dump(config, mesh, state, ct, 'initial', wall_start, timers, ok)
       if (.not. ok) code = EXIT_FAILURE
     end if
     ! The wall-time budget's dump estimate: the longest dump so far, at first
@@ -219,14 +216,14 @@ contains
     do while (code == EXIT_OK)
       if (ctl%fail /= FAIL_NONE) then
         call failure_message(config, mesh, state, ctl)
-        call output_dump(config, mesh, state, 'failure', wall_start, timers, ok)
+        call output_dump(config, mesh, state, ct, 'failure', wall_start, timers, ok)
         code = EXIT_FAILURE
         exit
       end if
       if (state%time >= config%t_end) exit
       if (state%cycle >= config%max_cycles) then
         call max_cycles_message(config, state)
-        call output_dump(config, mesh, state, 'max_cycles', wall_start, timers, ok)
+        call output_dump(config, mesh, state, ct, 'max_cycles', wall_start, timers, ok)
         code = EXIT_INCOMPLETE
         exit
       end if
@@ -245,7 +242,7 @@ contains
       if (ct%stop_run) then
         call audit_stop_message()
         call output_history(config, mesh, state, ct, timers)
-        call output_dump(config, mesh, state, 'failure', wall_start, timers, ok)
+        call output_dump(config, mesh, state, ct, 'failure', wall_start, timers, ok)
         code = EXIT_FAILURE
         exit
       end if
@@ -264,7 +261,7 @@ contains
       if (ctl%stop /= STOP_NONE .and. .not. plan%last) then
         call output_history(config, mesh, state, ct, timers)
         call stop_message(config, state, ctl, wall_time() - wall_begin, .false.)
-        call output_dump(config, mesh, state, 'stop', wall_start, timers, ok)
+        call output_dump(config, mesh, state, ct, 'stop', wall_start, timers, ok)
         code = merge(EXIT_INCOMPLETE, EXIT_FAILURE, ok)
         if (ok) call stop_message(config, state, ctl, wall_time() - wall_begin, .true.)
         exit
@@ -273,12 +270,12 @@ contains
       if (plan%history_due(state%cycle)) call output_history(config, mesh, state, ct, timers)
       if (plan%status_due(state%cycle)) then
         call eta%add(wall_time(), state%time)
-        call status_line(config, mesh, state, ctl, eta, wall_start, wall_status, &
+        call status_line(config, mesh, state, ct, ctl, eta, wall_start, wall_status, &
             cycle_status, timers)
       end if
       dump_why = plan%dump_reason(state%cycle)
       if (len_trim(dump_why) > 0) then
-        call output_dump(config, mesh, state, trim(dump_why), wall_start, timers, ok)
+        call output_dump(config, mesh, state, ct, trim(dump_why), wall_start, timers, ok)
         if (.not. ok) code = EXIT_FAILURE
         wall_dump = max(wall_dump, timers%last('dumps'))
       end if
@@ -286,11 +283,11 @@ contains
     ! A clean stop (max_cycles, STOP file, wall-time limit, a signal) reports
     ! its timing like a run that reached t_end; a failure does not.
     if (code == EXIT_OK) then
-      call output_dump(config, mesh, state, 'final', wall_start, timers, ok)
+      call output_dump(config, mesh, state, ct, 'final', wall_start, timers, ok)
       if (.not. ok) code = EXIT_FAILURE
     end if
     if (code /= EXIT_OK .and. code /= EXIT_INCOMPLETE) return
-    if (ct%npair > 0) call contact_report(ct, wall_time() - wall_start - &
+    call contact_report(ct, wall_time() - wall_start - &
         timers%total('dumps'))
     call halo_report(mesh, state%cycle)
     call timing_report(timers, state%cycle, wall_time() - wall_start)

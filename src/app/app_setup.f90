@@ -17,10 +17,11 @@ module app_setup
   use mesh_distribute, only: mesh_distribute_build, distribute_stats_t
   use contact_surface, only: set_names_of
   use hydro_state, only: state_t, state_init, HOURGLASS_STIFFNESS, HOURGLASS_NONE
-  use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain, boundary_prescribed
+  use hydro_boundary, only: boundary_t, boundary_setup, boundary_constrain, boundary_prescribed, &
+      BC_SYMMETRY, BC_WALL
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
-  use contact_enforce, only: contact_t, contact_setup
+  use contact_enforce, only: contact_t, contact_setup, side_context_t
   use contact_monitor, only: contact_initial
   use contact_state, only: initial_offsets_t
   use io_deck, only: config_t
@@ -57,6 +58,8 @@ contains
     type(global_mesh_t) :: global
     type(initial_offsets_t), allocatable :: offsets(:)
     real(rk), allocatable :: coordinates(:, :)
+    real(rk), allocatable :: pair_work(:)
+    type(side_context_t) :: sides
     logical :: exists
     integer :: n
     if (len_trim(restart) > 0) then
@@ -69,9 +72,15 @@ contains
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, coordinates, bc, timers, status)
     if (.not. status%ok()) return
+    ! Surfaces given by blocks: the deck's blocks, and the face sets that
+    ! never form one (symmetry planes, rigid walls).
+    sides%block_names = config%blocks(:)%name
+    sides%closed_sets = pack(config%boundaries(:)%set, config%boundaries(:)%kind == BC_SYMMETRY &
+        .or. config%boundaries(:)%kind == BC_WALL)
     if (size(config%contacts) > 0) then
       call timers%start('contact set-up')
-      call contact_initial(config%contacts, global, bc%symmetry_planes, offsets, status)
+      call contact_initial(config%contacts, global, mesh, bc%symmetry_planes, offsets, status, &
+          sides)
       ! Initial overlaps may have moved nodes.
       do n = 1, mesh%nnode
         coordinates(:, n) = global%coordinates(:, mesh%node_gid(n))
@@ -83,18 +92,19 @@ contains
         config%output%directory, config%units, probes, status)
     if (status%ok()) then
       call timers%start('contact set-up')
-      call contact_setup(config%contacts, global, mesh, state%node_mass, ct, status, offsets, &
-          bc%symmetry_planes, boundary_prescribed(bc, size(state%node_mass)))
+      call contact_setup(config%contacts, global, mesh, state%node_position, state%node_mass, &
+          ct, status, offsets, bc%symmetry_planes, boundary_prescribed(bc, &
+          size(state%node_mass)), sides)
       call timers%stop('contact set-up')
     end if
     if (.not. status%ok()) return
     call global%free()
-    allocate(state%contact_pair_work(ct%npair), source=0.0_rk)
     if (len_trim(restart) > 0) then
       call timers%start('restart read')
-      call dump_read(restart, mesh, state, status)
-      ! The contact work of each interface goes on from the dump's.
-      if (ct%npair > 0) ct%pairs(:)%work = state%contact_pair_work
+      ! The contact work (and each interface's) goes on from the dump's.
+      pair_work = ct%pairs(:)%work
+      call dump_read(restart, mesh, state, status, ct%work, pair_work)
+      ct%pairs(:)%work = pair_work
       call timers%stop('restart read')
     end if
   end subroutine setup_run
@@ -187,7 +197,7 @@ contains
   !> names. coordinates are the local nodes' initial positions. A deck with
   !> &contact also gets the whole mesh in global (contact set-up still uses
   !> it), built from the same parts.
-  subroutine setup_mesh(config, global, mesh, coordinates, bc, timers, status)
+  subroutine setup_mesh(config, global, mesh, coordinates, bc, timers, status, whole)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(inout) :: global
     type(mesh_t), intent(inout) :: mesh
@@ -195,6 +205,9 @@ contains
     type(boundary_t), intent(inout) :: bc
     type(timers_t), intent(inout) :: timers
     type(status_t), intent(inout) :: status
+    !> build the whole mesh in global even without &contact (tests comparing
+    !> with a brute force over the whole mesh)
+    logical, intent(in), optional :: whole
     character(len=NAME_LEN), allocatable :: group_names(:)
     type(global_mesh_t), allocatable :: pieces(:)
     type(mesh_range_t) :: range
@@ -212,6 +225,7 @@ contains
     claimed = .false.
     imported = ''
     need_global = size(config%contacts) > 0
+    if (present(whole)) need_global = need_global .or. whole
     call global%free()
     allocate(global%coordinates(3, 0), global%connectivity(8, 0), global%zone_block(0))
     call timers%start('mesh generate')
@@ -447,6 +461,8 @@ contains
       names = set_names_of(list)
       if (size(names) == 0) call status%add(trim(where)//': '//key//': no face set named')
       do i = 1, size(names)
+        ! (block:NAME entries: contact_setup checks the block names)
+        if (index(names(i), 'block:') == 1) cycle
         if (.not. any(mesh%set_name == names(i))) call status%add(trim(where)//': '//key//': '''// &
             trim(names(i))//''' is not a face set of the mesh'//name_hint(names(i), &
             mesh%set_name(1:mesh%nset)))

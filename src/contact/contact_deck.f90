@@ -18,7 +18,7 @@ module contact_deck
       key_t("name", "c", "''", "", &
       "label of the interface's history columns"), &
       key_t("surface_a", "c", "required", "", &
-      "face set(s) of one side, separated by blanks or commas"), &
+      "face set(s) of one side, separated by blanks or commas, or blocks ('block:NAME')"), &
       key_t("surface_b", "c", "surface_a", "", &
       "face set(s) of the other side (omitted: self-contact)"), &
       key_t("method", "c", "required", "", &

@@ -2,8 +2,10 @@
 !> Zhang & Liu (J. Comput. Phys. 267 (2014) 247-285), as described in
 !> docs/contact.md, section 5: every overlapping facet pair of facing
 !> segments is a one-dimensional contact pair with equal and opposite
-!> forces. contact_enforce calls dlm_step on each RCB part; the pair forces
-!> go to the owners of the nodes as records (contact_records).
+!> forces. dlm_t is the method (contact_method_t): two rounds a stage, the
+!> gated shares of each node (round 1, dlm_cover) and the pair forces (round
+!> 2, dlm_step), each a set of records the owners of the nodes sum in key
+!> order (contact_records). It holds the cycle's facet pairs.
 !>
 !> Forms (deck key `form`): with mu = Mh Md/(Mh + Md),
 !>   coordinate: fh = mu (Fd/Md - Fh/Mh + (vd - vh)/(dt/2) - pen/(dt^2/2)),
@@ -43,12 +45,12 @@ module contact_dlm
       triangle_overlap_2d, plane_offset, covered, OVERLAP_VERTICES, FACET_CORNER, &
       SEGMENT_FACET_COUNT
   use contact_records, only: records_t, add_record
-  use contact_state, only: FORM_VELOCITY, FACING, FACING_SURFACES, AREA_TOLERANCE, &
-      interface_t, contact_t, geometry_update
-  use contact_kernels, only: dlm_pair_force, dlm_pair_friction
+  use contact_state, only: FACING, FACING_SURFACES, AREA_TOLERANCE, PAIR_SEGMENTS, &
+      SURFACE_LEN, interface_t, contact_t, contact_spec_t, contact_method_t, geometry_update
+  use contact_kernels, only: dlm_pair_force, dlm_pair_friction, KERNEL_COORDINATE, &
+      KERNEL_VELOCITY, KERNEL_COMBINED
   implicit none
   private
-  public :: dlm_step, dlm_cover
 
   !> Default fraction of a facet pair's penetration removed per step in the
   !> velocity form (see dlm_step).
@@ -61,7 +63,163 @@ module contact_dlm
   !> of the size (square root of the area) of the smaller of the two segments.
   real(rk), parameter :: RECOVERY_ALLOWANCE = 0.02_rk
 
+  !> Rounds of a stage and their record layouts: the gated shares (one
+  !> value, the node's share of the pair), then the pair forces (a 3-vector).
+  integer, parameter :: ROUND_COVER = 1, ROUND_FORCE = 2
+  integer, parameter :: COVER_WIDTH = 1, FORCE_WIDTH = 3
+  !> Values per owned node after the cover round: the node's summed shares.
+  integer, parameter :: COVER_SUM_WIDTH = 1
+
+  !> DLM: the method and its cache of the cycle's facet pairs (on this part).
+  type, extends(contact_method_t), public :: dlm_t
+    integer :: form = KERNEL_VELOCITY !< KERNEL_COORDINATE, _VELOCITY or _COMBINED
+    real(rk) :: recovery = DLM_DEFAULT_RECOVERY !< velocity form: penetration fraction per step
+    integer :: nfp = 0 !< facet pairs of the cycle
+    integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
+    integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
+    real(rk), allocatable :: fp_share(:, :) !< (2, nfp) shares of the hitting and target node
+    real(rk), allocatable :: fp_normal(:, :) !< (3, nfp) common normal (from the hitting side)
+    real(rk), allocatable :: fp_pen(:) !< (nfp) penetration at the overlap's deepest vertex (the gate)
+    real(rk), allocatable :: fp_area(:) !< (nfp) overlap area
+    real(rk), allocatable :: fp_excess(:) !< (nfp) penetration beyond the recovery allowance
+    logical, allocatable :: fp_gated(:) !< (nfp) the pair's gate in this stage (dlm_cover)
+  contains
+    procedure, nopass :: pair_kind => dlm_pair_kind
+    procedure, nopass :: rounds => dlm_rounds
+    procedure, nopass :: record_width => dlm_record_width
+    procedure, nopass :: owner_width => dlm_owner_width
+    procedure :: configure => dlm_configure
+    procedure, nopass :: sides => dlm_sides
+    procedure :: reverse_pass => dlm_no
+    procedure :: enforces_b => dlm_yes
+    procedure :: localized => dlm_localized
+    procedure :: part_round => dlm_part_round
+    procedure :: owner_round => dlm_owner_round
+    procedure, nopass :: pen_rms => dlm_pen_rms
+    procedure :: bytes => dlm_bytes
+  end type dlm_t
+
 contains
+
+  pure integer function dlm_pair_kind()
+    dlm_pair_kind = PAIR_SEGMENTS
+  end function dlm_pair_kind
+
+  pure integer function dlm_rounds()
+    dlm_rounds = ROUND_FORCE
+  end function dlm_rounds
+
+  pure integer function dlm_record_width(r)
+    integer, intent(in) :: r
+    dlm_record_width = merge(COVER_WIDTH, FORCE_WIDTH, r == ROUND_COVER)
+  end function dlm_record_width
+
+  pure integer function dlm_owner_width(r)
+    integer, intent(in) :: r
+    dlm_owner_width = merge(COVER_SUM_WIDTH, 0, r == ROUND_COVER)
+  end function dlm_owner_width
+
+  !> The deck's form and recovery; with sweeps > 1 the Gauss-Seidel over all
+  !> pairs is sequential, on part 0.
+  subroutine dlm_configure(this, spec, reverse, single_part)
+    class(dlm_t), intent(inout) :: this
+    type(contact_spec_t), intent(in) :: spec
+    logical, intent(in) :: reverse
+    logical, intent(out) :: single_part
+    select case (spec%form)
+    case ('coordinate')
+      this%form = KERNEL_COORDINATE
+    case ('combined')
+      this%form = KERNEL_COMBINED
+    case default
+      this%form = KERNEL_VELOCITY
+    end select
+    this%recovery = DLM_DEFAULT_RECOVERY
+    if (spec%recovery >= 0.0_rk) this%recovery = spec%recovery
+    single_part = spec%sweeps > 1 .and. .not. reverse
+  end subroutine dlm_configure
+
+  !> Symmetric: the deck's sides as they are.
+  pure subroutine dlm_sides(spec, side_a, side_b)
+    type(contact_spec_t), intent(in) :: spec
+    character(len=SURFACE_LEN), intent(out) :: side_a, side_b
+    side_a = spec%surface_a
+    side_b = spec%surface_b
+  end subroutine dlm_sides
+
+  pure logical function dlm_no(this)
+    class(dlm_t), intent(in) :: this
+    dlm_no = .false.
+  end function dlm_no
+
+  pure logical function dlm_yes(this)
+    class(dlm_t), intent(in) :: this
+    dlm_yes = .true.
+  end function dlm_yes
+
+  !> The facet pairs are recomputed in the next predictor.
+  subroutine dlm_localized(this, ct, p)
+    class(dlm_t), intent(inout) :: this
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+  end subroutine dlm_localized
+
+  subroutine dlm_part_round(this, ct, p, k, r, dt, final, inflow, out)
+    class(dlm_t), intent(inout) :: this
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    integer, intent(in) :: k, r
+    real(rk), intent(in) :: dt
+    logical, intent(in) :: final
+    real(rk), intent(in) :: inflow(:, :)
+    type(records_t), intent(inout) :: out
+    if (r == ROUND_COVER) then
+      call dlm_cover(this, ct, p, k, dt, final, out)
+    else
+      call dlm_step(this, ct, p, k, dt, inflow(1, :), out)
+    end if
+  end subroutine dlm_part_round
+
+  !> The owners: each node's shares summed (round 1), the pair forces summed
+  !> (round 2), in key order.
+  subroutine dlm_owner_round(this, ct, p, r, rec, v_old, force, dt, values, fc, has)
+    class(dlm_t), intent(inout) :: this
+    type(contact_t), intent(in) :: ct
+    type(interface_t), intent(inout) :: p
+    integer, intent(in) :: r
+    type(records_t), intent(in) :: rec
+    real(rk), intent(in) :: v_old(:, :), force(:, :), dt
+    real(rk), intent(out) :: values(:, :)
+    real(rk), intent(inout) :: fc(:, :)
+    logical, intent(inout) :: has(:)
+    integer :: j, i
+    if (r == ROUND_COVER) then
+      values = 0.0_rk
+      do j = 1, rec%n
+        i = int(rec%id(1, j))
+        values(:, i) = values(:, i) + rec%val(:, j)
+      end do
+    else
+      do j = 1, rec%n
+        i = int(rec%id(1, j))
+        fc(:, i) = fc(:, i) + rec%val(:, j)
+        has(i) = .true.
+      end do
+    end if
+  end subroutine dlm_owner_round
+
+  !> Over the overlap area.
+  pure real(rk) function dlm_pen_rms(pen_sq, weight)
+    real(rk), intent(in) :: pen_sq, weight
+    dlm_pen_rms = sqrt(pen_sq / max(weight, tiny(1.0_rk)))
+  end function dlm_pen_rms
+
+  pure real(rk) function dlm_bytes(this)
+    class(dlm_t), intent(in) :: this
+    dlm_bytes = 0.0_rk
+    if (allocated(this%fp_node)) dlm_bytes = real(9 * size(this%fp_pen), rk) * 8.0_rk + &
+        real(size(this%fp_node), rk) * 4.0_rk + real(size(this%fp_key), rk) * 8.0_rk
+  end function dlm_bytes
 
   !> DLM geometry at x^n (the same for both stages, so computed once per
   !> cycle, in the predictor): every overlapping facet pair of facing
@@ -70,7 +228,8 @@ contains
   !> (coordinates relative to segment a's centre); the overlap centroid lies
   !> in that plane, and the penetration, a difference of two distances along
   !> the normal, does not depend on where along the normal it lies.
-  subroutine dlm_geometry(ct, p)
+  subroutine dlm_geometry(dl, ct, p)
+    type(dlm_t), intent(inout) :: dl
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     real(rk) :: na(3), nb(3), nrm(3), s0, centroid(3), pen, wh, wd, t1(3), t2(3), origin(3)
@@ -83,14 +242,14 @@ contains
 
     call geometry_update(ct%x, p%a, p%ga)
     call geometry_update(ct%x, p%b, p%gb)
-    p%nfp = 0
-    if (.not. allocated(p%fp_node)) allocate(p%fp_node(2, 64), p%fp_share(2, 64), &
-        p%fp_normal(3, 64), p%fp_pen(64), p%fp_area(64), p%fp_excess(64), p%fp_gated(64), &
-        p%fp_key(64))
+    dl%nfp = 0
+    if (.not. allocated(dl%fp_node)) allocate(dl%fp_node(2, 64), dl%fp_share(2, 64), &
+        dl%fp_normal(3, 64), dl%fp_pen(64), dl%fp_area(64), dl%fp_excess(64), dl%fp_gated(64), &
+        dl%fp_key(64))
     associate(ga => p%ga, gb => p%gb)
-      do m = 1, size(p%segment_pairs, 2)
-        sa = p%segment_pairs(1, m)
-        sb = p%segment_pairs(2, m)
+      do m = 1, size(p%pairs, 2)
+        sa = p%pairs(1, m)
+        sb = p%pairs(2, m)
         na = ga%quad_normal(:, sa)
         nb = gb%quad_normal(:, sb)
         if (.not. dot_product(na, nb) < merge(FACING, FACING_SURFACES, p%self)) cycle
@@ -174,7 +333,7 @@ contains
             kept = max(p%offset(ct%all_of(nodeh)), p%offset(ct%all_of(noded)))
             ! Deeper than half a segment: the far side of a body, not contact.
             if (pen - kept > 0.5_rk * p%size) cycle
-            call add_facet_pair(p, nodeh, noded, wh, wd, pen - kept, s0, nrm, &
+            call add_facet_pair(dl, nodeh, noded, wh, wd, pen - kept, s0, nrm, &
                 max(pen - kept - allowance, 0.0_rk), &
                 p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8))
           end do
@@ -185,8 +344,8 @@ contains
   end subroutine dlm_geometry
 
   !> Append one facet pair to the interface's cache, growing it when full.
-  subroutine add_facet_pair(p, nodeh, noded, wh, wd, pen, s0, nrm, excess, key)
-    type(interface_t), intent(inout) :: p
+  subroutine add_facet_pair(dl, nodeh, noded, wh, wd, pen, s0, nrm, excess, key)
+    type(dlm_t), intent(inout) :: dl
     integer, intent(in) :: nodeh, noded
     real(rk), intent(in) :: wh, wd !< the shares of the hitting and target node
     real(rk), intent(in) :: pen !< penetration at the overlap's deepest vertex (also the gate)
@@ -194,25 +353,25 @@ contains
     real(rk), intent(in) :: excess !< penetration beyond the recovery allowance (>= 0)
     integer(i8), intent(in) :: key !< global order: segment pair, facet of a, facet of b
     integer :: n
-    if (p%nfp == size(p%fp_node, 2)) then
-      n = 2 * p%nfp
-      call grow_int2(p%fp_node, n)
-      call grow_real2(p%fp_share, n)
-      call grow_real2(p%fp_normal, n)
-      call grow_real1(p%fp_pen, n)
-      call grow_real1(p%fp_area, n)
-      call grow_real1(p%fp_excess, n)
-      call grow_logical1(p%fp_gated, n)
-      call grow_key(p%fp_key, n)
+    if (dl%nfp == size(dl%fp_node, 2)) then
+      n = 2 * dl%nfp
+      call grow_int2(dl%fp_node, n)
+      call grow_real2(dl%fp_share, n)
+      call grow_real2(dl%fp_normal, n)
+      call grow_real1(dl%fp_pen, n)
+      call grow_real1(dl%fp_area, n)
+      call grow_real1(dl%fp_excess, n)
+      call grow_logical1(dl%fp_gated, n)
+      call grow_key(dl%fp_key, n)
     end if
-    p%nfp = p%nfp + 1
-    p%fp_node(:, p%nfp) = [nodeh, noded]
-    p%fp_share(:, p%nfp) = [wh, wd]
-    p%fp_pen(p%nfp) = pen
-    p%fp_area(p%nfp) = s0
-    p%fp_normal(:, p%nfp) = nrm
-    p%fp_excess(p%nfp) = excess
-    p%fp_key(p%nfp) = key
+    dl%nfp = dl%nfp + 1
+    dl%fp_node(:, dl%nfp) = [nodeh, noded]
+    dl%fp_share(:, dl%nfp) = [wh, wd]
+    dl%fp_pen(dl%nfp) = pen
+    dl%fp_area(dl%nfp) = s0
+    dl%fp_normal(:, dl%nfp) = nrm
+    dl%fp_excess(dl%nfp) = excess
+    dl%fp_key(dl%nfp) = key
 
   contains
 
@@ -270,7 +429,8 @@ contains
   !> whole mass takes part in stopping it; a node at a convex edge or corner
   !> touches the other surface with a sliver of its area only, and with the
   !> raw shares its approach was stopped in proportion to that sliver).
-  subroutine dlm_cover(ct, p, k, dt, final, out)
+  subroutine dlm_cover(dl, ct, p, k, dt, final, out)
+    type(dlm_t), intent(inout) :: dl
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: k !< the interface's number
@@ -280,29 +440,30 @@ contains
     real(rk) :: nrm(3), wh, wd, mh, md, fh, w
     integer :: q, nodeh, noded
 
-    if (.not. final .or. .not. allocated(p%fp_node)) call dlm_geometry(ct, p)
-    do q = 1, p%nfp
-      nodeh = p%fp_node(1, q)
-      noded = p%fp_node(2, q)
-      wh = p%fp_share(1, q)
-      wd = p%fp_share(2, q)
-      nrm = p%fp_normal(:, q)
+    if (.not. final .or. .not. allocated(dl%fp_node)) call dlm_geometry(dl, ct, p)
+    do q = 1, dl%nfp
+      nodeh = dl%fp_node(1, q)
+      noded = dl%fp_node(2, q)
+      wh = dl%fp_share(1, q)
+      wd = dl%fp_share(2, q)
+      nrm = dl%fp_normal(:, q)
       mh = ct%mass(nodeh) * wh
       md = ct%mass(noded) * wd
       w = dot_product(ct%v(:, nodeh), nrm) - dot_product(ct%v(:, noded), nrm)
       ! The gate: the penetration at the overlap's deepest vertex (dlm_geometry).
-      call dlm_pair_force(p%form, mh, md, dot_product(ct%f(:, nodeh), nrm) * wh, &
-          dot_product(ct%f(:, noded), nrm) * wd, w, p%fp_pen(q), p%fp_pen(q), dt, 0.0_rk, &
-          fh, p%fp_gated(q))
-      if (.not. p%fp_gated(q)) cycle
-      call add_record(out, ct%all_of(nodeh), k, p%fp_key(q), [wh])
-      call add_record(out, ct%all_of(noded), k, p%fp_key(q), [wd])
+      call dlm_pair_force(dl%form, mh, md, dot_product(ct%f(:, nodeh), nrm) * wh, &
+          dot_product(ct%f(:, noded), nrm) * wd, w, dl%fp_pen(q), dl%fp_pen(q), dt, 0.0_rk, &
+          fh, dl%fp_gated(q))
+      if (.not. dl%fp_gated(q)) cycle
+      call add_record(out, ct%all_of(nodeh), k, dl%fp_key(q), [wh])
+      call add_record(out, ct%all_of(noded), k, dl%fp_key(q), [wd])
     end do
   end subroutine dlm_cover
 
   !> DLM: every overlapping facet pair of facing segments is a 1D contact pair
   !> (geometry and gates from dlm_cover, forces of the stage).
-  subroutine dlm_step(ct, p, k, dt, cover, out)
+  subroutine dlm_step(dl, ct, p, k, dt, cover, out)
+    type(dlm_t), intent(inout) :: dl
     type(contact_t), intent(in) :: ct
     type(interface_t), intent(inout) :: p
     integer, intent(in) :: k !< the interface's number
@@ -318,7 +479,7 @@ contains
     real(rk) :: pen_sq, area_sum
     integer :: q, i, nodeh, noded, active, sweep
 
-    allocate(lambda(p%nfp), gated(p%nfp), fc(3, ct%ncn))
+    allocate(lambda(dl%nfp), gated(dl%nfp), fc(3, ct%ncn))
     lambda = 0.0_rk
     fc = 0.0_rk
     ! Sweep 1 is the one-pass DLM: every pair from the free (hydro) state.
@@ -327,13 +488,13 @@ contains
     ! forces of all pairs so far; sum(lambda) stays <= 0 per pair and each
     ! correction is applied equal and opposite, so momentum stays exact.
     do sweep = 1, max(p%spec%sweeps, 1)
-      do q = 1, p%nfp
-        nodeh = p%fp_node(1, q)
-        noded = p%fp_node(2, q)
+      do q = 1, dl%nfp
+        nodeh = dl%fp_node(1, q)
+        noded = dl%fp_node(2, q)
         wh = share(1, q)
         wd = share(2, q)
-        pen = p%fp_pen(q)
-        nrm = p%fp_normal(:, q)
+        pen = dl%fp_pen(q)
+        nrm = dl%fp_normal(:, q)
         mh = ct%mass(nodeh) * wh
         md = ct%mass(noded) * wd
         mu = mh * md / (mh + md)
@@ -344,10 +505,10 @@ contains
           fh_ = dot_product(ct%f(:, nodeh), nrm) * wh
           fd_ = dot_product(ct%f(:, noded), nrm) * wd
           ! The gate was decided in dlm_cover (the one its shares count).
-          call dlm_pair_force(p%form, mh, md, fh_, fd_, w, pen, p%fp_pen(q), dt, &
-              recovery_speed(q), fh, gated(q), p%fp_gated(q))
+          call dlm_pair_force(dl%form, mh, md, fh_, fd_, w, pen, dl%fp_pen(q), dt, &
+              recovery_speed(q), fh, gated(q), dl%fp_gated(q))
         else
-          if (.not. gated(q) .or. p%form /= FORM_VELOCITY) cycle
+          if (.not. gated(q) .or. dl%form /= KERNEL_VELOCITY) cycle
           ! Residual approach at t^n+1 with every contact force so far.
           fh_ = dot_product(ct%f(:, nodeh) + fc(:, nodeh), nrm) * wh
           fd_ = dot_product(ct%f(:, noded) + fc(:, noded), nrm) * wd
@@ -364,15 +525,15 @@ contains
     ! of each pair. Skipped entirely without friction, so frictionless
     ! results are bitwise those of the code before it.
     if (p%spec%friction > 0.0_rk) then
-      allocate(ft(3, p%nfp))
+      allocate(ft(3, dl%nfp))
       ft = 0.0_rk
-      do q = 1, p%nfp
+      do q = 1, dl%nfp
         if (.not. lambda(q) < 0.0_rk) cycle
-        nodeh = p%fp_node(1, q)
-        noded = p%fp_node(2, q)
+        nodeh = dl%fp_node(1, q)
+        noded = dl%fp_node(2, q)
         wh = share(1, q)
         wd = share(2, q)
-        nrm = p%fp_normal(:, q)
+        nrm = dl%fp_normal(:, q)
         ft(:, q) = dlm_pair_friction(p%spec%friction, ct%mass(nodeh) * wh, &
             ct%mass(noded) * wd, ct%v(:, nodeh), ct%v(:, noded), ct%f(:, nodeh) * wh, &
             ct%f(:, noded) * wd, nrm, dt, lambda(q))
@@ -387,17 +548,17 @@ contains
         if (any(fc(:, i) /= 0.0_rk)) call add_record(out, ct%all_of(i), k, 0_i8, fc(:, i))
       end do
     else
-      do q = 1, p%nfp
+      do q = 1, dl%nfp
         if (lambda(q) == 0.0_rk) cycle
-        nrm = p%fp_normal(:, q)
+        nrm = dl%fp_normal(:, q)
         if (allocated(ft)) then
-          call add_record(out, ct%all_of(p%fp_node(1, q)), k, p%fp_key(q), &
+          call add_record(out, ct%all_of(dl%fp_node(1, q)), k, dl%fp_key(q), &
               lambda(q) * nrm + ft(:, q))
-          call add_record(out, ct%all_of(p%fp_node(2, q)), k, p%fp_key(q), &
+          call add_record(out, ct%all_of(dl%fp_node(2, q)), k, dl%fp_key(q), &
               -(lambda(q) * nrm + ft(:, q)))
         else
-          call add_record(out, ct%all_of(p%fp_node(1, q)), k, p%fp_key(q), lambda(q) * nrm)
-          call add_record(out, ct%all_of(p%fp_node(2, q)), k, p%fp_key(q), -(lambda(q) * nrm))
+          call add_record(out, ct%all_of(dl%fp_node(1, q)), k, dl%fp_key(q), lambda(q) * nrm)
+          call add_record(out, ct%all_of(dl%fp_node(2, q)), k, dl%fp_key(q), -(lambda(q) * nrm))
         end if
       end do
     end if
@@ -407,10 +568,10 @@ contains
     pen_max = 0.0_rk
     pen_sq = 0.0_rk
     area_sum = 0.0_rk
-    do q = 1, p%nfp
+    do q = 1, dl%nfp
       if (.not. lambda(q) < 0.0_rk) cycle
-      pen = p%fp_pen(q)
-      s0 = p%fp_area(q)
+      pen = dl%fp_pen(q)
+      s0 = dl%fp_area(q)
       active = active + 1
       sum_force = sum_force - lambda(q)
       if (pen > 0.0_rk) then
@@ -427,14 +588,16 @@ contains
     do i = 1, ct%ncn
       p%sums%dmom = p%sums%dmom + fc(:, i)
     end do
+    ! A momentum: the forces over the step.
+    p%sums%dmom = dt * p%sums%dmom
   contains
 
     !> Target approach speed of facet pair q in the velocity form: the
-    !> separation that removes the fraction p%recovery of its penetration at
+    !> separation that removes the fraction dl%recovery of its penetration at
     !> t^n over the step (0 for a gap).
     pure real(rk) function recovery_speed(q) result(speed)
       integer, intent(in) :: q
-      speed = -p%recovery * p%fp_excess(q) * ct%landing / dt
+      speed = -dl%recovery * dl%fp_excess(q) * ct%landing / dt
     end function recovery_speed
 
     !> Share c of facet pair q (c = 1 hitting, 2 target node), scaled by the
@@ -442,8 +605,8 @@ contains
     pure real(rk) function share(c, q)
       integer, intent(in) :: c, q
       integer :: node
-      node = p%fp_node(c, q)
-      share = p%fp_share(c, q)
+      node = dl%fp_node(c, q)
+      share = dl%fp_share(c, q)
       if (cover(node) > 0.0_rk) share = share / cover(node)
     end function share
 

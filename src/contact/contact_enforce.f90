@@ -4,7 +4,11 @@
 !> (2014) 247-285), as described in docs/contact.md, sections 5-6: set-up,
 !> the rounds of a stage (search, migration, the methods on the RCB parts,
 !> the owners' sums) and the diagnostics. This is the narrow interface
-!> between the hydro state and contact.
+!> between the hydro state and contact. The methods are types
+!> (contact_method_t, made by contact_factory): this driver runs their
+!> rounds and never asks which method it runs. Set-up and
+!> contact_surface_refresh (surfaces given by blocks, rebuilt from the live
+!> zones) share index_surfaces, the contact index space.
 !>
 !> Where it sits. In each stage, after the hydro forces f of the stage are
 !> known and before v = v^n + h (f + fc)/m (h = dt/2 in the predictor, dt in
@@ -50,32 +54,40 @@ module contact_enforce
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_node_index, set_names_of
-  use contact_records, only: records_t, take, send_records, sum_records
+  use contact_records, only: records_t, take, send_records
   use contact_search, only: find_key
-  use contact_state, only: METHOD_DAM, METHOD_DLM, FORM_COORDINATE, FORM_VELOCITY, &
-      RIGID_MASS_FACTOR, FORM_COMBINED, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, &
-      contact_spec_t, surface_geometry_t, selection_t, contact_t, initial_offsets_t, step_sums_t
+  use contact_state, only: RIGID_MASS_FACTOR, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, &
+      SURFACE_LEN, contact_spec_t, surface_geometry_t, selection_t, contact_t, &
+      initial_offsets_t, step_sums_t, contact_method_t, method_slot_t
   use contact_audit, only: surface_sagitta, audit_reach
-  use contact_dlm, only: dlm_step, dlm_cover, DLM_DEFAULT_RECOVERY
-  use contact_dam, only: dam_exchange, dam_put_back, match_masters, dam_forces
+  use contact_factory, only: contact_method_new
+  use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
   use parallel_env, only: par_sum_array, par_max, par_rank, par_size
   implicit none
   private
-  public :: contact_setup, contact_apply, contact_work_update
+  public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
   public :: contact_report
   ! The state the application and the deck reader see.
   public :: CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, contact_t
+  public :: side_context_t
+
+  !> Per-node values of the owners' last round, on this part (ncn).
+  type :: inflow_t
+    real(rk), allocatable :: v(:, :, :)
+  end type inflow_t
 
 contains
 
   !> Build the contact surfaces in contact-index space, the owned-node map and
   !> the nodal masses. Problems go to status (group, key, reason).
-  subroutine contact_setup(specs, global, mesh, node_mass, ct, status, offsets, planes, rigid)
+  subroutine contact_setup(specs, global, mesh, x, node_mass, ct, status, offsets, planes, &
+      rigid, context)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local) node positions
     real(rk), intent(in) :: node_mass(:) !< (nnode local) nodal masses
     type(contact_t), intent(inout) :: ct
     type(status_t), intent(inout) :: status
@@ -85,12 +97,14 @@ contains
     real(rk), intent(in), optional :: planes(:, :)
     !> (nnode local) nodes whose motion is prescribed: rigid for the contact
     logical, intent(in), optional :: rigid(:)
+    !> the deck's blocks and closed face sets, for surfaces given by blocks
+    type(side_context_t), intent(in), optional :: context
+    type(side_context_t) :: sides
     type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
-    integer(i8), allocatable :: all(:)
-    real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
-    integer :: k, n, i, m, count_all
-    character(len=16) :: where
-    character(len=SURFACE_LEN) :: master_set, slave_set
+    integer :: k, m
+    character(len=SURFACE_LEN) :: side_a, side_b
+    type(method_slot_t), allocatable :: methods(:)
+    logical, allocatable :: single(:)
 
     if (present(planes)) then
       ct%planes = planes
@@ -98,59 +112,172 @@ contains
       allocate(ct%planes(4, 0))
     end if
     ct%ndeck = size(specs)
-    ct%npair = ct%ndeck + count(specs%symmetric .and. specs%method == 'dam')
+    if (present(context)) then
+      sides = context
+    else
+      allocate(sides%block_names(0), sides%closed_sets(0))
+    end if
+    ! The methods first: each may add a reverse pass after the deck's.
+    allocate(methods(ct%ndeck), single(ct%ndeck))
+    ct%npair = ct%ndeck
+    do k = 1, ct%ndeck
+      call contact_method_new(specs(k), .false., methods(k)%method, single(k))
+      if (methods(k)%method%reverse_pass()) ct%npair = ct%npair + 1
+    end do
     allocate(ct%pairs(ct%npair), raw_a(ct%npair), raw_b(ct%npair))
     if (ct%npair == 0) return
     m = ct%ndeck
     do k = 1, ct%ndeck
-      write(where, '(a,i0,a)') '&contact(', k, ')'
       associate(p => ct%pairs(k))
         p%spec = specs(k)
         p%self = specs(k)%surface_a == specs(k)%surface_b
-        select case (specs(k)%method)
-        case ('dam')
-          p%method = METHOD_DAM
-        case default
-          p%method = METHOD_DLM
-        end select
-        select case (specs(k)%form)
-        case ('coordinate')
-          p%form = FORM_COORDINATE
-        case ('combined')
-          p%form = FORM_COMBINED
-        case default
-          p%form = FORM_VELOCITY
-        end select
-        p%recovery = DLM_DEFAULT_RECOVERY
-        p%slave_normal = specs(k)%normal == 'slave'
-        if (specs(k)%recovery >= 0.0_rk) p%recovery = specs(k)%recovery
-        ! For DAM, b is the master side.
-        slave_set = specs(k)%surface_a
-        master_set = specs(k)%surface_b
-        if (p%method == METHOD_DAM .and. specs(k)%master == 'a') then
-          slave_set = specs(k)%surface_b
-          master_set = specs(k)%surface_a
-        end if
-        call surface_build(global, set_names_of(slave_set), raw_a(k), status)
-        call surface_build(global, set_names_of(master_set), raw_b(k), status)
-        if (p%method == METHOD_DAM .and. specs(k)%symmetric) then
+        p%single_part = single(k)
+        call move_alloc(methods(k)%method, p%method)
+        ! The method's sides: for DAM, b is the master side.
+        call p%method%sides(specs(k), side_a, side_b)
+        call side_surface(side_a, side_b, global, mesh, sides, 'contact '''// &
+            trim(specs(k)%name)//'''', raw_a(k), status)
+        call side_surface(side_b, side_a, global, mesh, sides, 'contact '''// &
+            trim(specs(k)%name)//'''', raw_b(k), status)
+        if (p%method%reverse_pass()) then
           ! The reverse pass: the same interface with the sides swapped.
           m = m + 1
           p%mirror = m
-          ct%pairs(m) = p
-          ct%pairs(m)%mirror = 0
+          ct%pairs(m)%spec = p%spec
+          ct%pairs(m)%self = p%self
           ct%pairs(m)%mirror_of = k
-          ! Its contact normal is its slave's own (the deck master's): the
-          ! first pass's master edges and corners lead here, and the normal
-          ! at an edge's projection tilts toward the edge and would move
-          ! the slave along the surface (docs/contact.md, 6.2).
-          ct%pairs(m)%slave_normal = .true.
+          call contact_method_new(specs(k), .true., ct%pairs(m)%method, &
+              ct%pairs(m)%single_part)
           raw_a(m) = raw_b(k)
           raw_b(m) = raw_a(k)
         end if
       end associate
     end do
     if (.not. status%ok()) return
+
+    call index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, offsets=offsets)
+    allocate(ct%node_gap(size(node_mass)))
+    ct%node_gap = 0.0_rk
+
+  end subroutine contact_setup
+
+  !> Surfaces that change during a run: every deck interface whose sides
+  !> name blocks gets them again from the exterior faces of the zones live
+  !> now (contact_surface_rebuild on each rank's local mesh; live covers
+  !> the ghost zones, refreshed by the caller through the zone halo); sides
+  !> given by face sets keep their faces. The contact index space, owned
+  !> nodes, segment homes and RCB key nodes follow; each node keeps its
+  !> initial offset (a new node has none); sagittas and reach are taken at
+  !> x; a global search and RCB run at the next stage (contact_apply), and
+  !> the audit after it. The work of each interface goes on. Collective.
+  subroutine contact_surface_refresh(ct, mesh, x, node_mass, live, context, rigid)
+    type(contact_t), intent(inout) :: ct
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local) node positions
+    real(rk), intent(in) :: node_mass(:) !< (nnode local)
+    logical, intent(in) :: live(:) !< (nzone local) zones live, ghosts included
+    type(side_context_t), intent(in) :: context
+    logical, intent(in), optional :: rigid(:) !< (nnode local) prescribed motion
+    type(contact_surface_t), allocatable :: raw_a(:), raw_b(:)
+    type(status_t) :: status
+    integer(i8), allocatable :: old_gid(:)
+    real(rk), allocatable :: old_offset(:, :)
+    character(len=SURFACE_LEN) :: side_a, side_b
+    integer :: k, m
+
+    if (ct%npair == 0) return
+    allocate(raw_a(ct%npair), raw_b(ct%npair), old_offset(ct%nall, ct%npair))
+    do k = 1, ct%ndeck
+      associate(p => ct%pairs(k))
+        call p%method%sides(p%spec, side_a, side_b)
+        call side_raw(side_a, side_b, p%all_a, raw_a(k))
+        call side_raw(side_b, side_a, p%all_b, raw_b(k))
+        m = p%mirror
+        if (m > 0) then
+          raw_a(m) = raw_b(k)
+          raw_b(m) = raw_a(k)
+        end if
+      end associate
+    end do
+    if (.not. status%ok()) error stop 'contact_surface_refresh: the deck''s blocks changed'
+    call move_alloc(ct%all_gid, old_gid)
+    do k = 1, ct%npair
+      old_offset(:, k) = ct%pairs(k)%offset
+    end do
+    call forget_index(ct)
+    call index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, old_gid=old_gid, &
+        old_offset=old_offset)
+    ! The next stage searches again on the new surfaces.
+    ct%next_search = 0
+    if (allocated(ct%all_of)) deallocate(ct%all_of)
+    ct%audit_due = .true.
+
+  contains
+
+    !> A side's surface in global node ids: rebuilt from blocks, or as it is.
+    subroutine side_raw(list, other, current, raw)
+      character(len=*), intent(in) :: list, other
+      type(contact_surface_t), intent(in) :: current
+      type(contact_surface_t), intent(inout) :: raw
+      integer, allocatable :: blocks(:), facing(:)
+      integer(i8), allocatable :: ids(:)
+      integer(ik), allocatable :: nodes(:, :)
+      integer :: i
+      if (.not. side_is_blocks(list)) then
+        allocate(nodes(4, current%nseg))
+        do i = 1, current%nseg
+          nodes(:, i) = int(ct%all_gid(current%segments(:, i)), ik)
+        end do
+        call surface_from_segments(nodes, current%segment_id, surf=raw)
+        return
+      end if
+      call blocks_of(list, context, 'contact refresh', blocks, status)
+      allocate(facing(0))
+      if (side_is_blocks(other) .and. other /= list) then
+        call blocks_of(other, context, 'contact refresh', facing, status)
+        facing = pack(facing, [(all(blocks /= facing(i)), i = 1, size(facing))])
+      end if
+      call block_faces(mesh, live, blocks, facing, context, ids, nodes)
+      call surface_from_segments(nodes, ids, surf=raw)
+    end subroutine side_raw
+
+  end subroutine contact_surface_refresh
+
+  !> Release what index_surfaces builds (before a refresh builds it again).
+  subroutine forget_index(ct)
+    type(contact_t), intent(inout) :: ct
+    integer :: k
+    deallocate(ct%own_contact, ct%own_local, ct%own_of, ct%fc, ct%gap_own, ct%key_capable, &
+        ct%xs)
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        deallocate(p%was_active, p%offset, p%own_in_a, p%fc_own, p%own_slave)
+        call p%all_a%free()
+        call p%all_b%free()
+      end associate
+    end do
+  end subroutine forget_index
+
+  !> The contact index space of the interfaces' surfaces raw_a, raw_b
+  !> (global node ids): every contact node by global id, the surfaces in it,
+  !> the owned nodes, masses, owners and positions (from the owners: x),
+  !> segment homes, and the audit's offsets, sagittas (at x) and reach.
+  !> offsets: the set-up's initial offsets per surface node; old_gid,
+  !> old_offset: a refresh's previous contact nodes and their offsets per
+  !> interface. Collective.
+  subroutine index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, offsets, old_gid, &
+      old_offset)
+    type(contact_t), intent(inout) :: ct
+    type(contact_surface_t), intent(in) :: raw_a(:), raw_b(:)
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :), node_mass(:)
+    logical, intent(in), optional :: rigid(:)
+    type(initial_offsets_t), intent(in), optional :: offsets(:)
+    integer(i8), intent(in), optional :: old_gid(:)
+    real(rk), intent(in), optional :: old_offset(:, :) !< (size(old_gid), npair)
+    integer(i8), allocatable :: all(:)
+    real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
+    integer :: k, n, i, c, count_all
 
     ! Contact nodes: every node of every surface, by global id.
     count_all = 0
@@ -168,18 +295,8 @@ contains
     call sort_unique(all)
     ct%nall = size(all)
     call move_alloc(all, ct%all_gid)
-    allocate(xc(3, ct%nall))
-    xc = global%coordinates(:, ct%all_gid)
-    do k = 1, ct%npair
-      call renumber(raw_a(k), ct%pairs(k)%all_a)
-      call renumber(raw_b(k), ct%pairs(k)%all_b)
-      ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
-          median_size(xc, ct%pairs(k)%all_b))
-      ct%pairs(k)%single_part = ct%pairs(k)%method == METHOD_DLM .and. &
-          ct%pairs(k)%spec%sweeps > 1
-    end do
 
-    ! Owned contact nodes of this rank; masses and owners of all.
+    ! Owned contact nodes of this rank; masses, owners and positions of all.
     ct%nown = 0
     allocate(ct%own_contact(mesh%nnode_owned), ct%own_local(mesh%nnode_owned))
     do n = 1, mesh%nnode_owned
@@ -196,7 +313,7 @@ contains
     do i = 1, ct%nown
       ct%own_of(ct%own_contact(i)) = i
     end do
-    allocate(packed(3, ct%nall))
+    allocate(packed(6, ct%nall))
     packed = 0.0_rk
     do i = 1, ct%nown
       packed(1, ct%own_contact(i)) = node_mass(ct%own_local(i))
@@ -204,11 +321,20 @@ contains
       if (present(rigid)) then
         if (rigid(ct%own_local(i))) packed(3, ct%own_contact(i)) = 1.0_rk
       end if
+      packed(4:6, ct%own_contact(i)) = x(:, ct%own_local(i))
     end do
-    allocate(flat(3 * ct%nall))
-    flat = reshape(packed, [3 * ct%nall])
+    allocate(flat(6 * ct%nall))
+    flat = reshape(packed, [6 * ct%nall])
     call par_sum_array(flat)
-    packed = reshape(flat, [3, ct%nall])
+    packed = reshape(flat, [6, ct%nall])
+    ! (one owner each, zero elsewhere: the sums are the owners' values)
+    xc = packed(4:6, :)
+    do k = 1, ct%npair
+      call renumber(raw_a(k), ct%pairs(k)%all_a)
+      call renumber(raw_b(k), ct%pairs(k)%all_b)
+      ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
+          median_size(xc, ct%pairs(k)%all_b))
+    end do
     ct%all_mass = packed(1, :)
     ct%all_owner = nint(packed(2, :))
     ! A node whose motion is prescribed is rigid for the contact: its mass is
@@ -241,6 +367,13 @@ contains
             p%offset(p%all_b%nodes(i)) = max(p%offset(p%all_b%nodes(i)), offsets(k)%b(i))
           end do
         end if
+        ! A refresh keeps each node's offset (by global id; a new node has none).
+        if (present(old_gid) .and. p%mirror_of == 0) then
+          do i = 1, ct%nall
+            c = find_key(old_gid, ct%all_gid(i))
+            if (c > 0) p%offset(i) = old_offset(c, k)
+          end do
+        end if
         ! A reverse pass keeps the initial penetration of its deck interface
         ! (offsets are per contact node, so the same array).
         if (p%mirror_of > 0) p%offset = ct%pairs(p%mirror_of)%offset
@@ -269,7 +402,8 @@ contains
       call surface_from_segments(segments, raw%segment_id, xc, surf)
     end subroutine renumber
 
-  end subroutine contact_setup
+  end subroutine index_surfaces
+
 
   !> Median of the longest segment edge over a surface.
   function median_size(x, surf) result(h)
@@ -308,8 +442,8 @@ contains
         real(rk) :: t
       end function wall_clock
     end interface
-    real(rk), allocatable :: fck(:, :, :), vmatch(:, :, :), vm_local(:, :, :)
-    logical, allocatable :: has(:, :), touched(:, :)
+    real(rk), allocatable :: fck(:, :, :)
+    logical, allocatable :: has(:, :)
     real(rk) :: t0, speed
     type(selection_t), allocatable :: sel(:)
     integer :: i, k
@@ -340,7 +474,7 @@ contains
     ct%fc = 0.0_rk
     call stage_round(1, ct%ndeck)
     if (ct%npair > ct%ndeck) then
-      ! DAM's reverse passes (symmetric = .true.), master and slave swapped,
+      ! The reverse passes (DAM symmetric = .true.), master and slave swapped,
       ! start from the force with the deck interfaces' contact forces in it:
       ! where the first pass matched the two sides nothing is left to do,
       ! and master nodes that cross the slave surface are caught.
@@ -361,67 +495,49 @@ contains
 
   contains
 
-    !> The interfaces first..last in one round: the methods on the parts, the
-    !> owners' sums, and their contact forces added to force and ct%fc.
+    !> The interfaces first..last in one round: each method's rounds on the
+    !> parts and at the owners (contact_method_t), and their contact forces
+    !> added to force and ct%fc.
     subroutine stage_round(first, last)
       integer, intent(in) :: first, last
-      type(records_t) :: dlm_out, dam_out, putback, cover_out
-      real(rk), allocatable :: cover(:, :, :), cover_local(:, :, :)
-      logical, allocatable :: covered(:, :)
+      type(records_t), allocatable :: out(:)
+      type(inflow_t), allocatable :: inflow(:)
+      real(rk), allocatable :: values(:, :, :)
       real(rk) :: fsum(3)
-      logical :: any_dam, any_dlm
-      call take(ct%kept(1), dlm_out, 3)
-      call take(ct%kept(2), dam_out, 10)
-      call take(ct%kept(3), putback, 3)
-      call take(ct%kept(4), cover_out, 1)
-      any_dam = .false.
-      any_dlm = any(ct%pairs(first:last)%method == METHOD_DLM)
-      if (any_dlm) then
-        ! DLM's first round: each node's shares over its gated pairs, summed
-        ! by the owners in key order and sent back to the parts.
-        do k = first, last
-          if (ct%pairs(k)%method == METHOD_DLM) call dlm_cover(ct, ct%pairs(k), k, dt, &
-              final, cover_out)
-        end do
-        call lap(ct%enforce_seconds)
-        call send_records(cover_out, ct%all_owner, ct%own_of, ct%nown)
-        allocate(cover(1, ct%nown, ct%npair), covered(ct%nown, ct%npair))
-        cover = 0.0_rk
-        covered = .false.
-        call sum_records(cover_out, cover, covered)
-        call scatter_nodes(ct, cover, cover_local)
-        call lap(ct%migrate_seconds)
-      end if
+      integer :: r, nround
+      allocate(out(first:last), inflow(first:last))
+      nround = 0
       do k = first, last
+        nround = max(nround, ct%pairs(k)%method%rounds())
         ct%pairs(k)%sums = step_sums_t()
-        select case (ct%pairs(k)%method)
-        case (METHOD_DLM)
-          call dlm_step(ct, ct%pairs(k), k, dt, cover_local(1, :, k), dlm_out)
-        case (METHOD_DAM)
-          any_dam = .true.
-          call dam_exchange(ct, ct%pairs(k), k, dt, final, dam_out)
-        end select
+        allocate(inflow(k)%v(0, 0, 1))
       end do
-      call lap(ct%enforce_seconds)
-
-      ! The owners: sums in key order.
-      call send_records(dlm_out, ct%all_owner, ct%own_of, ct%nown)
-      call sum_records(dlm_out, fck, has)
-      if (any_dam) then
-        call send_records(dam_out, ct%all_owner, ct%own_of, ct%nown)
-        if (.not. allocated(vmatch)) allocate(vmatch(7, ct%nown, ct%npair), &
-            touched(ct%nown, ct%npair))
-        call match_masters(ct, dam_out, v_old, force, dt, vmatch, touched)
-        call scatter_nodes(ct, vmatch, vm_local)
-        call lap(ct%migrate_seconds)
+      do r = 1, nround
+        ! The parts: each interface's records for the owners.
         do k = first, last
-          if (ct%pairs(k)%method == METHOD_DAM) call dam_put_back(ct, ct%pairs(k), k, dt, &
-              vm_local(1:3, :, k), vm_local(4:6, :, k), vm_local(7, :, k), putback)
+          associate(p => ct%pairs(k))
+            if (r > p%method%rounds()) cycle
+            call take(p%method%kept(r), out(k), p%method%record_width(r))
+            call p%method%part_round(ct, p, k, r, dt, final, inflow(k)%v(:, :, 1), &
+                out(k))
+          end associate
         end do
         call lap(ct%enforce_seconds)
-        call send_records(putback, ct%all_owner, ct%own_of, ct%nown)
-        call dam_forces(ct, first, last, putback, v_old, force, dt, vmatch, touched, fck, has)
-      end if
+        ! The owners: sums in key order; values for the next round to the parts.
+        do k = first, last
+          associate(p => ct%pairs(k))
+            if (r > p%method%rounds()) cycle
+            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown)
+            allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
+            call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
+                fck(:, :, k), has(:, k))
+            if (r < p%method%rounds()) call scatter_nodes(ct, values, inflow(k)%v)
+            deallocate(values)
+            call take(out(k), p%method%kept(r), p%method%record_width(r))
+          end associate
+        end do
+        call lap(ct%migrate_seconds)
+      end do
       do i = 1, ct%nown
         if (ct%all_rigid(ct%own_contact(i))) then
           ! Prescribed motion: the boundary holds the node (contact_setup).
@@ -435,10 +551,6 @@ contains
         ct%fc(:, i) = ct%fc(:, i) + fsum
         force(:, ct%own_local(i)) = force(:, ct%own_local(i)) + fsum
       end do
-      call take(dlm_out, ct%kept(1), 3)
-      call take(dam_out, ct%kept(2), 10)
-      call take(putback, ct%kept(3), 3)
-      call take(cover_out, ct%kept(4), 1)
     end subroutine stage_round
 
     subroutine lap(total)
@@ -461,7 +573,6 @@ contains
     integer :: k
     do k = 1, ct%npair
       associate(p => ct%pairs(k), s => ct%pairs(k)%sums)
-        if (p%method == METHOD_DLM) s%dmom = dt * s%dmom
         sums = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
             real(count(p%was_active .and. .not. has(:, k)), rk)]
         p%was_active = has(:, k)
@@ -469,14 +580,9 @@ contains
         p%pen_sq = sums(3)
         p%pen_weight = sums(4)
         pen_max = par_max(s%pen_max)
-        ! pen_rms: over the overlap area (DLM) or the penetrating slaves (DAM).
-        if (p%method == METHOD_DLM) then
-          p%diag(1:8) = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), tiny(1.0_rk))), &
-              sums(8), sums(5:7)]
-        else
-          p%diag(1:8) = [sums(1), sums(2), pen_max, sqrt(sums(3) / max(sums(4), 1.0_rk)), &
-              sums(8), sums(5:7)]
-        end if
+        ! pen_rms: over the method's weights (DLM: overlap area, DAM: slaves).
+        p%diag(1:8) = [sums(1), sums(2), pen_max, p%method%pen_rms(sums(3), sums(4)), &
+            sums(8), sums(5:7)]
       end associate
     end do
   end subroutine reduce_diagnostics
@@ -484,7 +590,8 @@ contains
 
   !> After the velocity update: the work of the contact forces over the step
   !> on the owned nodes, its terms added exactly (core_exact_sum; the caller
-  !> reduces it), and per interface in work_step.
+  !> reduces it), and per interface in work_step. Nothing without an
+  !> interface.
   subroutine contact_work_update(ct, v_old, v_new, dt, work)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: v_old(:, :), v_new(:, :)
@@ -514,6 +621,7 @@ contains
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
     real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit
     integer :: largest, smallest, k
+    if (ct%npair == 0) return
     search = par_max(ct%search_seconds)
     enforce = par_max(ct%enforce_seconds)
     migrate = par_max(ct%migrate_seconds)
@@ -533,10 +641,7 @@ contains
         whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b)
         local = local + surface_bytes(p%a) + surface_bytes(p%b) + geometry_bytes(p%ga) + &
             geometry_bytes(p%gb)
-        if (allocated(p%fp_node)) local = local + real(9 * size(p%fp_pen), rk) * 8.0_rk + &
-            real(size(p%fp_node), rk) * 4.0_rk + real(size(p%fp_key), rk) * 8.0_rk
-        if (allocated(p%ex_real)) local = local + real(size(p%ex_real), rk) * 8.0_rk + &
-            real(size(p%ex_master), rk) * 4.0_rk
+        local = local + p%method%bytes()
       end associate
     end do
     whole = par_max(whole)

@@ -24,12 +24,15 @@ module contact_monitor
   use mesh_global, only: global_mesh_t
   use contact_surface, only: contact_surface_t, surface_build, set_names_of
   use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
-  use contact_state, only: METHOD_DAM, METHOD_DLM, contact_spec_t, interface_t, contact_t, &
-      initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT
+  use contact_state, only: contact_spec_t, interface_t, contact_t, contact_method_t, &
+      initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN
+  use contact_factory, only: contact_method_new
+  use contact_sides, only: side_context_t, side_surface
+  use mesh_local, only: mesh_t
   use parallel_env, only: par_sum_array, par_sum_exact, par_rank, par_size, par_allgather
   implicit none
   private
-  public :: contact_initial, contact_audit_run, contact_step_end
+  public :: contact_initial, contact_audit_run, contact_step_end, contact_audit_due
 
   !> At most one audit warning per interface in this many cycles.
   integer, parameter :: WARN_EVERY = 100
@@ -90,34 +93,43 @@ contains
   !> the penetrating nodes of one side (DAM: the slave; DLM: surface_a) onto
   !> the other surface, 'ignore' keeps every penetration as an offset.
   !> Penetration within the tolerance is an offset under every option.
-  !> Collective only through nothing: every rank computes the same.
-  subroutine contact_initial(specs, global, planes, offsets, status)
+  !> Every rank computes the same; collective only for surfaces given by
+  !> blocks (their faces come from each rank's local mesh).
+  subroutine contact_initial(specs, global, mesh, planes, offsets, status, context)
     type(contact_spec_t), intent(in) :: specs(:)
     type(global_mesh_t), intent(inout) :: global
+    type(mesh_t), intent(in) :: mesh
     real(rk), intent(in) :: planes(:, :) !< (4, n) the deck's symmetry planes
     type(initial_offsets_t), allocatable, intent(out) :: offsets(:)
     type(status_t), intent(inout) :: status
+    !> the deck's blocks and closed face sets, for surfaces given by blocks
+    type(side_context_t), intent(in), optional :: context
+    type(side_context_t) :: sides
     type(contact_surface_t) :: sa, sb
     type(side_t) :: ra, rb
-    character(len=256) :: slave_set, master_set
+    character(len=SURFACE_LEN) :: slave_set, master_set
+    class(contact_method_t), allocatable :: method
+    logical :: single
     character(len=600) :: text
     character(len=:), allocatable :: where
     real(rk) :: reach, moved, deepest, where_x(3)
     integer :: k, i, nbeyond_a, nbeyond_b, deepest_node, bins(4)
     logical :: self, ok
 
+    if (present(context)) then
+      sides = context
+    else
+      allocate(sides%block_names(0), sides%closed_sets(0))
+    end if
     allocate(offsets(size(specs)))
     do k = 1, size(specs)
       where = '&contact '''//trim(specs(k)%name)//''''
-      slave_set = specs(k)%surface_a
-      master_set = specs(k)%surface_b
-      if (specs(k)%method == 'dam' .and. specs(k)%master == 'a') then
-        slave_set = specs(k)%surface_b
-        master_set = specs(k)%surface_a
-      end if
+      ! The method's sides (DAM: a is the slave side).
+      call contact_method_new(specs(k), .false., method, single)
+      call method%sides(specs(k), slave_set, master_set)
       ok = status%ok()
-      call surface_build(global, set_names_of(slave_set), sa, status)
-      call surface_build(global, set_names_of(master_set), sb, status)
+      call side_surface(slave_set, master_set, global, mesh, sides, trim(where), sa, status)
+      call side_surface(master_set, slave_set, global, mesh, sides, trim(where), sb, status)
       allocate(offsets(k)%a(sa%nnode), offsets(k)%b(sb%nnode))
       offsets(k)%a = 0.0_rk
       offsets(k)%b = 0.0_rk
@@ -356,6 +368,8 @@ contains
       end associate
     end do
     where (ct%gap_own == huge(1.0_rk)) ct%gap_own = 0.0_rk
+    ct%node_gap = 0.0_rk
+    ct%node_gap(ct%own_local) = ct%gap_own
     ct%audit_due = .false.
     ct%audited_cycle = cycle
     ct%audits = ct%audits + 1
@@ -363,14 +377,14 @@ contains
   contains
 
     !> Whether a penetrating node of surface b (owned node o) counts as held:
-    !> DLM and DAM's reverse pass enforce surface b's nodes, so such a node
-    !> is held when it carried a force in the last corrector; DAM's one pass
-    !> enforces slaves only, and a master node is reported in the side-b
-    !> columns and not as unheld.
+    !> a method that enforces surface b's nodes (DLM), or a reverse pass,
+    !> holds such a node when it carried a force in the last corrector; one
+    !> that enforces a's nodes only (DAM's one pass) reports a master node in
+    !> the side-b columns and not as unheld.
     logical function held_b(p, o)
       type(interface_t), intent(in) :: p
       integer, intent(in) :: o
-      if (p%method == METHOD_DLM) then
+      if (p%method%enforces_b()) then
         held_b = p%was_active(o)
       else if (p%mirror > 0) then
         held_b = ct%pairs(p%mirror)%was_active(o)
@@ -427,14 +441,26 @@ contains
 
   end subroutine contact_audit_run
 
-  !> End of a step: per interface, the contact force on surface a and the
-  !> work of the step (summed over the ranks) into the history columns.
-  !> Collective.
-  subroutine contact_step_end(ct)
+  !> An audit is due at the end of this cycle: a global search ran since the
+  !> last one, or the caller's schedule asks (a dump). Never without an
+  !> interface.
+  logical function contact_audit_due(ct, scheduled) result(due)
+    type(contact_t), intent(in) :: ct
+    logical, intent(in) :: scheduled
+    due = ct%npair > 0 .and. (ct%audit_due .or. scheduled)
+  end function contact_audit_due
+
+  !> End of a step: the contact work of the step, and per interface the
+  !> contact force on surface a and the work of the step (summed over the
+  !> ranks) into the history columns. Collective; nothing without an
+  !> interface.
+  subroutine contact_step_end(ct, work)
     type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: work !< the contact work of the step, summed over the ranks
     type(exact_sum_t), allocatable :: sums(:)
     integer :: k, i, m, j
     if (ct%npair == 0) return
+    ct%work = ct%work + work
     ! Exact sums (core_exact_sum): the columns do not depend on the rank count.
     allocate(sums(4 * ct%npair))
     do k = 1, ct%npair

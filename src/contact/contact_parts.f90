@@ -36,7 +36,7 @@ module contact_parts
   use contact_surface, only: contact_surface_t, surface_node_index, add_ring, local_surface, &
       keep_lower_side
   use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
-  use contact_state, only: contact_t, selection_t, int_list_t, METHOD_DLM, capture_of, &
+  use contact_state, only: contact_t, selection_t, int_list_t, PAIR_SEGMENTS, capture_of, &
       key_node, geometry_free
   use parallel_env, only: par_max, par_size, par_sum
   use parallel_exchange, only: par_exchange, par_exchange_counts
@@ -70,7 +70,7 @@ contains
       associate(p => ct%pairs(k))
         call homes_of(p%all_a, p%home_a, p%home_a_node)
         call homes_of(p%all_b, p%home_b, p%home_b_node)
-        if (p%method == METHOD_DLM) then
+        if (p%method%pair_kind() == PAIR_SEGMENTS) then
           do s = 1, p%all_a%nseg
             i = ct%own_of(p%all_a%segments(1, s))
             if (i > 0) ct%key_capable(i) = .true.
@@ -186,7 +186,7 @@ contains
         allocate(sel(k)%mark_a(p%all_a%nseg), sel(k)%mark_b(p%all_b%nseg))
         sel(k)%mark_a = .false.
         sel(k)%mark_b = .false.
-        if (p%method == METHOD_DLM) then
+        if (p%method%pair_kind() == PAIR_SEGMENTS) then
           do m = 1, size(sel(k)%pairs, 2)
             sel(k)%mark_a(sel(k)%pairs(1, m)) = .true.
             sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
@@ -280,22 +280,19 @@ contains
         do m = 1, p%all_b%nseg
           if (seg_b(m) > 0) p%lsag_b(seg_b(m)) = p%sag_b(m)
         end do
-        if (p%method == METHOD_DLM) then
-          p%segment_pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
+        if (p%method%pair_kind() == PAIR_SEGMENTS) then
+          p%pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
               m = 1, size(pairs, 2))], [2, size(pairs, 2)])
           ! The global order of a segment pair: the search lists them by (a, b).
           p%pair_key = [(int(pairs(1, m) - 1, i8) * int(p%all_b%nseg, i8) + &
               int(pairs(2, m), i8), m = 1, size(pairs, 2))]
         else
-          p%test_pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
+          p%pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
               m = 1, size(pairs, 2))], [2, size(pairs, 2)])
         end if
         call geometry_free(p%ga)
         call geometry_free(p%gb)
-        if (allocated(p%primary)) deallocate(p%primary)
-        if (allocated(p%enforced)) deallocate(p%enforced)
-        allocate(p%enforced(ct%ncn))
-        p%enforced = .false.
+        call p%method%localized(ct, p)
       end associate
     end do
   end subroutine contact_localize
@@ -330,7 +327,7 @@ contains
     do k = 1, ct%npair
       ext(k) = 0.0_rk
       associate(p => ct%pairs(k))
-        if (p%method == METHOD_DLM) then
+        if (p%method%pair_kind() == PAIR_SEGMENTS) then
           do j = 1, size(p%home_a)
             corners = x_old(:, p%home_a_node(:, j))
             ext(k) = max(ext(k), maxval(maxval(corners, dim=2) - minval(corners, dim=2)))
@@ -353,7 +350,7 @@ contains
       end if
       do k = 1, ct%npair
         associate(p => ct%pairs(k))
-          if (p%method == METHOD_DLM) then
+          if (p%method%pair_kind() == PAIR_SEGMENTS) then
             do j = 1, size(p%home_a)
               s = p%home_a(j)
               part = 0
@@ -432,7 +429,7 @@ contains
       associate(p => ct%pairs(k))
         call sort_values(keys(k)%v)
         call sort_values(cands(k)%v)
-        if (p%method == METHOD_DLM) then
+        if (p%method%pair_kind() == PAIR_SEGMENTS) then
           call segment_pair_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
               keys(k)%v, cands(k)%v)
         else
@@ -531,7 +528,7 @@ contains
     end do
   end subroutine gather_nodes
 
-  !> Owned values (nc, nown, npair) to the local sets (nc, ncn, npair).
+  !> Owned values (nc, nown, n) to the local sets (nc, ncn, n): n interfaces.
   subroutine scatter_nodes(ct, owned, local)
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: owned(:, :, :)
@@ -539,17 +536,17 @@ contains
     real(rk), allocatable :: send(:), recv(:)
     integer :: j, nv, nc, k, i
     nc = size(owned, 1)
-    nv = nc * ct%npair
-    allocate(send(nv * size(ct%send_own)), local(nc, ct%ncn, ct%npair))
+    nv = nc * size(owned, 3)
+    allocate(send(nv * size(ct%send_own)), local(nc, ct%ncn, size(owned, 3)))
     do j = 1, size(ct%send_own)
-      do k = 1, ct%npair
+      do k = 1, size(owned, 3)
         send(nv * (j - 1) + nc * (k - 1) + 1:nv * (j - 1) + nc * k) = owned(:, ct%send_own(j), k)
       end do
     end do
     call par_exchange(send, nv * ct%send_count, recv, nv * ct%recv_count)
     do j = 1, ct%ncn
       i = ct%recv_local(j)
-      do k = 1, ct%npair
+      do k = 1, size(owned, 3)
         local(:, i, k) = recv(nv * (j - 1) + nc * (k - 1) + 1:nv * (j - 1) + nc * k)
       end do
     end do

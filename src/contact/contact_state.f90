@@ -1,8 +1,15 @@
 !> Contact state: the deck's contact groups, the interfaces (whole surfaces,
-!> this part's local surfaces and pairs, per-cycle geometry caches) and the
-!> contact of a run (contact index space, owned nodes, the RCB part's local
-!> set and migration plan). Shared by contact_parts (search on the RCB parts,
-!> migration) and contact_enforce (DAM, DLM). No MPI, no I/O.
+!> this part's local surfaces and pairs, per-cycle geometry caches, the
+!> diagnostics), the contact of a run (contact index space, owned nodes, the
+!> RCB part's local set and migration plan), and the abstract contact method
+!> (contact_method_t) that DAM (contact_dam) and DLM (contact_dlm) extend.
+!> Everything here is method-neutral: a method's own arrays live in its type,
+!> and what differs between methods is a deferred procedure, so a third
+!> method is one new module and one case in contact_factory (docs/design.md).
+!> The abstract type is declared here, with the interface and the contact it
+!> works on, because its procedures take both and an interface holds its
+!> method. Shared by contact_parts (search on the RCB parts, migration) and
+!> contact_enforce (the rounds). No MPI, no I/O.
 module contact_state
   use core_kinds, only: rk, ik, i8
   use core_exact_sum, only: exact_sum_t
@@ -11,13 +18,17 @@ module contact_state
   use contact_geometry, only: segment_facets, triangle_unit_normal, triangle_vector_area, &
       quad_unit_normal, SEGMENT_FACET_COUNT
   use contact_records, only: records_t
-  use contact_search, only: primary_pair_t
   implicit none
   private
   public :: capture_of, key_node, geometry_free, geometry_update
 
-  integer, parameter, public :: METHOD_DAM = 1, METHOD_DLM = 2
-  integer, parameter, public :: FORM_COORDINATE = 1, FORM_VELOCITY = 2, FORM_COMBINED = 3
+  !> Pair kinds of a method's search (contact_method_t%pair_kind): segment
+  !> pairs (a segment of a, a segment of b: keyed by the a-segment's first
+  !> node) or node-segment pairs (a node of a, a segment of b: keyed by the
+  !> node).
+  integer, parameter, public :: PAIR_SEGMENTS = 1, PAIR_NODE_SEGMENT = 2
+  !> Most rounds a method runs in a stage (records to the owners and back).
+  integer, parameter, public :: MAX_ROUNDS = 2
   !> Diagnostic columns per contact pair.
   !> active: enforced pairs (DLM facet pairs, DAM slave nodes); force: total
   !> normal force; pen_max, pen_rms: largest and RMS penetration at t^n;
@@ -114,47 +125,33 @@ module contact_state
     real(rk), allocatable :: nodal_area(:) !< (ncn) dual-cell areas of the surface's nodes
   end type surface_geometry_t
 
-  !> One contact pair (interface).
+  !> One contact pair (interface): method-neutral surfaces, pairs, geometry
+  !> and diagnostics; the method's own state is in its object.
   type, public :: interface_t
     type(contact_spec_t), public :: spec
-    integer :: method = METHOD_DLM
-    integer :: form = FORM_VELOCITY
-    logical :: slave_normal = .false. !< DAM: the slave node's own normal (deck normal = 'slave')
-    real(rk) :: recovery = 0.0_rk !< DLM velocity form: penetration fraction removed per step
+    !> the method (contact_factory); its rounds, search pair kind, own arrays
+    class(contact_method_t), allocatable :: method
     logical :: self = .false.
-    !> DAM symmetric: the reverse pass of a deck interface is an interface of
-    !> its own after the deck's (mirror_of: that deck interface; mirror: the
-    !> deck interface's reverse pass). Its diagnostics go to the deck
-    !> interface's columns (contact_monitor).
+    !> A reverse pass (a method's second pass with the sides swapped, DAM
+    !> symmetric) is an interface of its own after the deck's (mirror_of:
+    !> that deck interface; mirror: the deck interface's reverse pass). Its
+    !> diagnostics go to the deck interface's columns (contact_monitor).
     integer :: mirror = 0, mirror_of = 0
-    logical :: single_part = .false. !< every pair on part 0 (DLM sweeps > 1)
+    logical :: single_part = .false. !< every pair on part 0 (set by the method)
     type(contact_surface_t) :: all_a, all_b !< whole surfaces, contact index (b = master for DAM)
     type(contact_surface_t) :: a, b !< this part's local surfaces, local index
     real(rk) :: size = 0.0_rk !< median segment size of both surfaces
     real(rk) :: margin = 0.0_rk !< territory margin in use
-    integer, allocatable :: segment_pairs(:, :) !< DLM: (2, n) local segment of a, of b
-    integer(i8), allocatable :: pair_key(:) !< DLM: (n) global order of each local segment pair
-    integer, allocatable :: test_pairs(:, :) !< DAM: (2, n) local slave node, master segment
+    !> (2, n) this part's pairs, local numbers: PAIR_SEGMENTS (segment of a,
+    !> segment of b), PAIR_NODE_SEGMENT (node, segment of b)
+    integer, allocatable :: pairs(:, :)
+    integer(i8), allocatable :: pair_key(:) !< PAIR_SEGMENTS: (n) global order of each pair
     integer, allocatable :: home_a(:), home_b(:) !< segments of all_a, all_b homed on this rank
     integer, allocatable :: home_a_node(:, :), home_b_node(:, :) !< (4, n) their local mesh nodes
-    integer, allocatable :: own_slave(:) !< DAM: owned nodes of all_a (surface node index)
+    !> PAIR_NODE_SEGMENT: owned nodes of all_a (surface node index), the key nodes
+    integer, allocatable :: own_slave(:)
     logical, allocatable :: was_active(:) !< (nown) owned node carried contact force last step
-    integer :: nfp = 0 !< DLM facet pairs of the cycle
-    integer, allocatable :: fp_node(:, :) !< (2, nfp) hitting and target node
-    integer(i8), allocatable :: fp_key(:) !< (nfp) global order of the facet pair
-    real(rk), allocatable :: fp_share(:, :) !< (2, nfp) shares of the hitting and target node
-    real(rk), allocatable :: fp_normal(:, :) !< (3, nfp) common normal (from the hitting side)
-    real(rk), allocatable :: fp_pen(:) !< (nfp) penetration at the overlap's deepest vertex (the gate)
-    real(rk), allocatable :: fp_area(:) !< (nfp) overlap area
-    real(rk), allocatable :: fp_excess(:) !< (nfp) penetration beyond the recovery allowance
-    logical, allocatable :: fp_gated(:) !< (nfp) the pair's gate in this stage (dlm_cover)
     type(surface_geometry_t) :: ga, gb !< geometry of a and b at x^n
-    type(primary_pair_t), allocatable :: primary(:) !< DAM: the cycle's primary pairs
-    real(rk), allocatable :: rbf(:, :) !< DAM: (4, nprimary) put-back weights
-    integer, allocatable :: ex_start(:) !< DAM: (nprimary + 1) exchange entries of a pair
-    integer, allocatable :: ex_master(:) !< DAM: master node of an exchange entry
-    real(rk), allocatable :: ex_real(:, :) !< DAM: (3, nex) shares wm, ws and overlap s0
-    logical, allocatable :: enforced(:) !< DAM: (ncn) local slave enforced this stage
     type(step_sums_t) :: sums !< this part's sums of the stage
     real(rk) :: pen_sq = 0.0_rk, pen_weight = 0.0_rk !< sums(pen_sq, weight) over the parts
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
@@ -233,8 +230,6 @@ module contact_state
     !> time in the first collective of each call: waiting for the slowest rank's
     !> hydro (load imbalance), kept out of the contact times
     real(rk) :: wait_seconds = 0.0_rk
-    !> record buffers (DLM, DAM exchange, DAM put-back, DLM cover) between stages
-    type(records_t) :: kept(4)
     ! The audit (contact_monitor).
     real(rk), allocatable :: gap_own(:) !< (nown) smallest signed gap of each owned node
     logical :: audit_due = .true. !< a search ran since the last audit
@@ -242,7 +237,130 @@ module contact_state
     logical :: stop_run = .false. !< on_penetration = 'stop' and the audit failed
     real(rk) :: audit_seconds = 0.0_rk !< wall time in the audit (set by the caller)
     integer :: audits = 0 !< audits run
+    ! Contact output (dumps, history, restart; each interface's work is in pairs(:)%work).
+    !> (nnode local) signed distance of a contact node to the opposite surface
+    !> at the last audit (< 0: penetration; 0 off the contact surfaces)
+    real(rk), allocatable :: node_gap(:)
+    real(rk) :: work = 0.0_rk !< work of the contact forces so far (all ranks)
   end type contact_t
+
+  !> A contact method: what DAM and DLM (and any other) do differently.
+  !> contact_enforce runs a stage as rounds: in round r each RCB part runs
+  !> part_round on its pairs and writes records (record_width(r) values
+  !> each) for the owners of the nodes; the owners run owner_round on what
+  !> arrived, in key order, and either hand back per-node values
+  !> (owner_width(r) each) that go to the parts for round r + 1, or, in the
+  !> last round, the contact force of each owned node. contact_parts asks
+  !> pair_kind for the search and the RCB keys. A method holds its own
+  !> arrays (the cycle's geometry caches, the owners' values between rounds).
+  type, abstract, public :: contact_method_t
+    !> record buffers of the rounds, kept from stage to stage
+    type(records_t) :: kept(MAX_ROUNDS)
+  contains
+    !> PAIR_SEGMENTS or PAIR_NODE_SEGMENT
+    procedure(method_integer), deferred, nopass :: pair_kind
+    !> rounds of a stage (1..MAX_ROUNDS)
+    procedure(method_integer), deferred, nopass :: rounds
+    !> values per record of round r, from the parts to the owners
+    procedure(method_width), deferred, nopass :: record_width
+    !> values per owned node after round r (< rounds()), back to the parts
+    procedure(method_width), deferred, nopass :: owner_width
+    !> settings from the deck group; reverse: the interface is a reverse pass
+    procedure(method_configure), deferred :: configure
+    !> the deck's surfaces a and b as this method's sides a and b
+    procedure(method_sides), deferred, nopass :: sides
+    !> the interface gets a reverse pass (sides swapped) after the deck's
+    procedure(method_flag), deferred :: reverse_pass
+    !> the method enforces the nodes of surface b too (the audit's unheld)
+    procedure(method_flag), deferred :: enforces_b
+    !> a rebuilt pair list arrived on this part: forget the cycle's caches
+    procedure(method_localized), deferred :: localized
+    !> the parts' round r (geometry at x^n in round 1 of the predictor)
+    procedure(method_part_round), deferred :: part_round
+    !> the owners' round r: values for the parts, or (last round) forces
+    procedure(method_owner_round), deferred :: owner_round
+    !> RMS penetration of the step from the summed squares and weights
+    procedure(method_rms), deferred, nopass :: pen_rms
+    !> bytes of the method's working arrays on this part (contact_report)
+    procedure(method_bytes), deferred :: bytes
+  end type contact_method_t
+
+  !> A method in a list (before its interface exists).
+  type, public :: method_slot_t
+    class(contact_method_t), allocatable :: method
+  end type method_slot_t
+
+  abstract interface
+    pure integer function method_integer()
+    end function method_integer
+
+    pure integer function method_width(r)
+      integer, intent(in) :: r
+    end function method_width
+
+    pure logical function method_flag(this)
+      import :: contact_method_t
+      class(contact_method_t), intent(in) :: this
+    end function method_flag
+
+    subroutine method_configure(this, spec, reverse, single_part)
+      import :: contact_method_t, contact_spec_t
+      class(contact_method_t), intent(inout) :: this
+      type(contact_spec_t), intent(in) :: spec
+      logical, intent(in) :: reverse
+      logical, intent(out) :: single_part !< every pair of the interface on part 0
+    end subroutine method_configure
+
+    pure subroutine method_sides(spec, side_a, side_b)
+      import :: contact_spec_t, SURFACE_LEN
+      type(contact_spec_t), intent(in) :: spec
+      character(len=SURFACE_LEN), intent(out) :: side_a, side_b
+    end subroutine method_sides
+
+    subroutine method_localized(this, ct, p)
+      import :: contact_method_t, contact_t, interface_t
+      class(contact_method_t), intent(inout) :: this
+      type(contact_t), intent(in) :: ct
+      type(interface_t), intent(inout) :: p
+    end subroutine method_localized
+
+    subroutine method_part_round(this, ct, p, k, r, dt, final, inflow, out)
+      import :: contact_method_t, contact_t, interface_t, records_t, rk
+      class(contact_method_t), intent(inout) :: this
+      type(contact_t), intent(in) :: ct
+      type(interface_t), intent(inout) :: p
+      integer, intent(in) :: k, r !< the interface's number, the round
+      real(rk), intent(in) :: dt !< the stage's step
+      logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
+      !> (owner_width(r - 1), ncn) the owners' values of the last round (r > 1)
+      real(rk), intent(in) :: inflow(:, :)
+      type(records_t), intent(inout) :: out
+    end subroutine method_part_round
+
+    subroutine method_owner_round(this, ct, p, r, rec, v_old, force, dt, values, fc, has)
+      import :: contact_method_t, contact_t, interface_t, records_t, rk
+      class(contact_method_t), intent(inout) :: this
+      type(contact_t), intent(in) :: ct
+      type(interface_t), intent(inout) :: p
+      integer, intent(in) :: r !< the round
+      type(records_t), intent(in) :: rec !< the records of the owned nodes, key order
+      real(rk), intent(in) :: v_old(:, :), force(:, :), dt
+      !> (owner_width(r), nown) values for the parts (rounds before the last)
+      real(rk), intent(out) :: values(:, :)
+      real(rk), intent(inout) :: fc(:, :) !< (3, nown) the interface's force (last round)
+      logical, intent(inout) :: has(:) !< (nown) the node carries a force (last round)
+    end subroutine method_owner_round
+
+    pure real(rk) function method_rms(pen_sq, weight)
+      import :: rk
+      real(rk), intent(in) :: pen_sq, weight
+    end function method_rms
+
+    pure real(rk) function method_bytes(this)
+      import :: contact_method_t, rk
+      class(contact_method_t), intent(in) :: this
+    end function method_bytes
+  end interface
 
   !> Initial penetration kept as an offset, per node of surfaces a and b
   !> (surface node order), from the set-up audit.
@@ -284,12 +402,12 @@ contains
   end function capture_of
 
 
-  !> The contact node that decides the part of a pair: DLM, the first corner
-  !> of its a-segment; DAM, its slave node.
+  !> The contact node that decides the part of a pair: a segment pair, the
+  !> first corner of its a-segment; a node-segment pair, its node.
   pure integer function key_node(p, pair) result(c)
     type(interface_t), intent(in) :: p
     integer, intent(in) :: pair(2)
-    if (p%method == METHOD_DLM) then
+    if (p%method%pair_kind() == PAIR_SEGMENTS) then
       c = p%all_a%segments(1, pair(1))
     else
       c = pair(1)

@@ -22,10 +22,12 @@ module contact_surface
   use core_status, only: status_t
   use mesh_geometry, only: HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
+  use mesh_local, only: mesh_t
   use contact_geometry, only: quad_unit_normal, corner_areas
   implicit none
   private
   public :: surface_build, surface_from_segments, surface_update_edges, set_names_of
+  public :: contact_surface_rebuild
   public :: surface_node_index, edge_end
   public :: add_ring, local_surface, master_neighbourhood, keep_lower_side, nodal_areas
 
@@ -149,11 +151,69 @@ contains
 
   end subroutine surface_build
 
+  !> The exterior faces of the live zones of the given blocks among this
+  !> rank's owned zones, from the local mesh only: each face of the whole
+  !> mesh is found by exactly one rank, the owner of its zone. A face is
+  !> exterior when across it there is no zone (the mesh boundary), a zone
+  !> that is not live, or a live zone of a block in facing (the two blocks
+  !> are the sides of a contact pair); a face between two zones of blocks is
+  !> interior, and the faces of the local face sets in excluded (symmetry
+  !> planes, rigid walls) are left out. live covers the ghost zones too (the
+  !> caller refreshes them through the zone halo). Faces come out in
+  !> ascending id, the order of the owned zones' global ids.
+  subroutine contact_surface_rebuild(mesh, live, blocks, facing, excluded, ids, nodes)
+    type(mesh_t), intent(in) :: mesh
+    logical, intent(in) :: live(:) !< (nzone) local zones, ghosts included
+    integer, intent(in) :: blocks(:) !< block indices of the surface
+    integer, intent(in) :: facing(:) !< block indices across which a face is exterior
+    integer, intent(in) :: excluded(:) !< local face sets (mesh%set_*) left out
+    integer(i8), allocatable, intent(out) :: ids(:) !< (n) (zone gid - 1) * 6 + face
+    integer(i8), allocatable, intent(out) :: nodes(:, :) !< (4, n) global node ids, outward
+    logical, allocatable :: closed(:, :)
+    integer :: z, f, nb, i, j, n, pass
+    logical :: exterior
+    ! Faces of the excluded sets, per owned zone.
+    allocate(closed(6, mesh%nzone))
+    closed = .false.
+    do i = 1, size(excluded)
+      do j = mesh%set_start(excluded(i)), mesh%set_start(excluded(i) + 1) - 1
+        closed(mesh%set_face(j), mesh%set_zone(j)) = .true.
+      end do
+    end do
+    do pass = 1, 2
+      n = 0
+      do z = 1, mesh%nzone_owned
+        if (.not. live(z)) cycle
+        if (.not. any(blocks == mesh%zone_block(z))) cycle
+        do f = 1, 6
+          if (closed(f, z)) cycle
+          nb = mesh%face_neighbour(f, z)
+          if (nb < 0) error stop 'contact_surface_rebuild: a face neighbour of an owned zone '// &
+              'is not local'
+          if (nb == 0) then
+            exterior = .true.
+          else if (.not. live(nb)) then
+            exterior = .true.
+          else
+            exterior = any(facing == mesh%zone_block(nb))
+          end if
+          if (.not. exterior) cycle
+          n = n + 1
+          if (pass == 1) cycle
+          ids(n) = (mesh%zone_gid(z) - 1_i8) * 6_i8 + int(f, i8)
+          nodes(:, n) = mesh%node_gid(mesh%zone_node(HEX_FACE_NODES(:, f), z))
+        end do
+      end do
+      if (pass == 1) allocate(ids(n), nodes(4, n))
+    end do
+  end subroutine contact_surface_rebuild
+
   !> Build a surface from an explicit segment list (outward node order).
   subroutine surface_from_segments(segments, segment_id, x, surf)
     integer(ik), intent(in) :: segments(:, :) !< (4, nseg) global node ids
     integer(i8), intent(in) :: segment_id(:) !< (nseg) global ids, for tie-breaking
-    real(rk), intent(in) :: x(:, :) !< (3, nnode) node positions
+    !> (3, nnode) node positions (absent: no edge flags, every edge convex)
+    real(rk), intent(in), optional :: x(:, :)
     type(contact_surface_t), intent(inout) :: surf
     integer, allocatable :: local(:), fill(:)
     integer :: nseg, s, k, n, max_id
@@ -210,7 +270,11 @@ contains
         surf%neighbours(k, s) = find_neighbour(s, segments(k, s), segments(edge_end(k), s))
       end do
     end do
-    call surface_update_edges(surf, x)
+    if (present(x)) then
+      call surface_update_edges(surf, x)
+    else
+      surf%edge_convex = .true.
+    end if
 
   contains
 

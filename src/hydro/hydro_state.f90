@@ -69,18 +69,11 @@ module hydro_state
     !> sum of -dt F_hg . v over the corrector stages (hourglass control on
     !> only; restart data)
     real(rk), allocatable :: zone_hourglass_work(:)
-    !> signed distance of a contact node to the opposite surface at the last
-    !> contact audit (< 0: penetration; 0 off the contact surfaces)
-    real(rk), allocatable :: node_contact_gap(:)
     real(rk) :: time = 0.0_rk !< t^n
     real(rk) :: dt = 0.0_rk !< step of the current cycle
     real(rk) :: dt_previous = 0.0_rk !< step of the previous cycle (0 before the first)
     integer(i8) :: cycle = 0 !< cycles done
     real(rk) :: boundary_work = 0.0_rk !< work done on the body by boundaries (diagnostic)
-    real(rk) :: contact_work = 0.0_rk !< work of the contact forces (diagnostic)
-    !> the same per contact interface (its history column NAME_work), kept
-    !> here so that dumps carry it across a restart
-    real(rk), allocatable :: contact_pair_work(:)
     real(rk) :: energy_initial = 0.0_rk !< total energy at t = 0 (diagnostic)
   end type state_t
 

@@ -37,12 +37,18 @@ contains
   !> Write the dump file path (and its .xmf sidecar) of the current state.
   !> units is the run's unit system (&control units): the root attribute
   !> units, and each field's units attribute from it.
-  subroutine dump_write(path, title, units, block_names, mesh, state, info, status)
+  subroutine dump_write(path, title, units, block_names, mesh, state, info, status, &
+      contact_gap, contact_work, pair_work)
     character(len=*), intent(in) :: path, title, units, block_names
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(in) :: state
     type(run_info_t), intent(in) :: info
     type(status_t), intent(inout) :: status
+    !> (nnode local) the contact audit's gaps (absent: no contact)
+    real(rk), intent(in), optional :: contact_gap(:)
+    real(rk), intent(in), optional :: contact_work !< work of the contact forces so far
+    real(rk), intent(in), optional :: pair_work(:) !< the same per contact interface
+    real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, z, k
     integer(i8) :: node_first, zone_first
@@ -123,8 +129,8 @@ contains
         node_first, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call units_of('/nodes/mass', 'mass')
-    if (allocated(state%node_contact_gap)) then
-      call mesh%node_io%to_block(reshape(state%node_contact_gap(1:nno), [1, nno]), nblock1)
+    if (present(contact_gap)) then
+      call mesh%node_io%to_block(reshape(contact_gap(1:nno), [1, nno]), nblock1)
       call h5_write_real_vector(file, '/nodes/contact_gap', nblock1(1, :), mesh%nnode_global, &
           node_first, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
@@ -194,14 +200,16 @@ contains
     call h5_write_attr_real(file, '/run', 'wall_seconds', info%wall_seconds, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_write_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
-    call h5_write_attr_real(file, '/run', 'contact_work', state%contact_work, e, msg)
+    work = 0.0_rk
+    if (present(contact_work)) work = contact_work
+    call h5_write_attr_real(file, '/run', 'contact_work', work, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
     ! Each contact interface's work (a sum over the ranks' nodes, like the
     ! total: its last bits depend on the rank count, hence here).
-    if (allocated(state%contact_pair_work)) then
-      do k = 1, size(state%contact_pair_work)
+    if (present(pair_work)) then
+      do k = 1, size(pair_work)
         call h5_write_attr_real(file, '/run', 'contact_work_'//to_text(k), &
-            state%contact_pair_work(k), e, msg)
+            pair_work(k), e, msg)
         if (e /= 0 .and. ierr == 0) ierr = e
       end do
     end if
@@ -227,7 +235,7 @@ contains
     if (e /= 0 .and. ierr == 0) ierr = e
     if (.not. agreed()) return
     if (par_rank() == 0) call write_sidecar(path, title, mesh%nnode_global, mesh%nzone_global, &
-        state%time, allocated(state%zone_stress), allocated(state%node_contact_gap))
+        state%time, allocated(state%zone_stress), present(contact_gap))
 
   contains
 
@@ -525,11 +533,14 @@ contains
 
   !> Read a dump into the state of a mesh built from the same deck: positions,
   !> velocities, masses, energies, restart state; ghosts refreshed by halos.
-  subroutine dump_read(path, mesh, state, status)
+  subroutine dump_read(path, mesh, state, status, contact_work, pair_work)
     character(len=*), intent(in) :: path
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
     type(status_t), intent(inout) :: status
+    real(rk), intent(inout), optional :: contact_work !< work of the contact forces so far
+    real(rk), intent(inout), optional :: pair_work(:) !< the same per contact interface
+    real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, version, icycle, ncomp, k
     integer(i8) :: node_first, zone_first, nglobal
@@ -580,15 +591,16 @@ contains
     state%cycle = int(rcycle, i8)
     call h5_read_attr_real(file, '/restart', 'dt_previous', state%dt_previous, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
-    if (allocated(state%contact_pair_work)) then
-      do k = 1, size(state%contact_pair_work)
+    if (present(pair_work)) then
+      do k = 1, size(pair_work)
         call h5_read_attr_real(file, '/run', 'contact_work_'//to_text(k), &
-            state%contact_pair_work(k), e, msg)
+            pair_work(k), e, msg)
         if (e /= 0 .and. ierr == 0) ierr = e
       end do
     end if
     call h5_read_attr_real(file, '/run', 'boundary_work', state%boundary_work, e, msg)
-    call h5_read_attr_real(file, '/run', 'contact_work', state%contact_work, e, msg)
+    call h5_read_attr_real(file, '/run', 'contact_work', work, e, msg)
+    if (present(contact_work)) contact_work = work
     if (e /= 0 .and. ierr == 0) ierr = e
     call h5_read_attr_real(file, '/run', 'energy_initial', state%energy_initial, e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e

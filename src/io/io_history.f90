@@ -65,8 +65,8 @@ contains
     open(newunit=unit, file=trim(config%output%directory)//'/history.txt', status='old', &
         position='append', action='write')
     write(unit, '(i0,10(1x,es23.15e3))', advance='no') state%cycle, state%time, state%dt, &
-        sums(1), sums(2), state%boundary_work, total, relative_error(total, state), sums(3:5)
-    write(unit, '(1x,es23.15e3)', advance='no') state%contact_work
+        sums(1), sums(2), state%boundary_work, total, relative_error(total, state, ct%work), sums(3:5)
+    write(unit, '(1x,es23.15e3)', advance='no') ct%work
     do k = 1, ct%ndeck
       write(unit, '(*(1x,es23.15e3))', advance='no') ct%pairs(k)%diag
     end do
@@ -144,10 +144,11 @@ contains
     end do
   end subroutine history_sums
 
-  real(rk) function relative_error(total, state)
+  real(rk) function relative_error(total, state, contact_work)
     real(rk), intent(in) :: total
     type(state_t), intent(in) :: state
-    relative_error = (total - state%boundary_work - state%contact_work - &
+    real(rk), intent(in) :: contact_work !< work of the contact forces so far
+    relative_error = (total - state%boundary_work - contact_work - &
         state%energy_initial) / &
         max(abs(state%energy_initial), tiny(1.0_rk))
   end function relative_error

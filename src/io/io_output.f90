@@ -46,10 +46,11 @@ contains
   !> for why = 'failure'), with the run's provenance, and the XDMF series
   !> updated. Section 'dumps' of timers. ok is false (on every rank) when the
   !> dump could not be written; rank 0 prints why.
-  subroutine output_dump(config, mesh, state, why, wall_start, timers, ok)
+  subroutine output_dump(config, mesh, state, ct, why, wall_start, timers, ok)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(in) :: state
+    type(contact_t), intent(in) :: ct !< the contact's gaps and work
     character(len=*), intent(in) :: why
     real(rk), intent(in) :: wall_start !< start of the time loop
     type(timers_t), intent(inout) :: timers
@@ -76,12 +77,12 @@ contains
       names = names//trim(config%blocks(b)%name)
     end do
     call dump_write(trim(path), config%title, trim(config%units), names, &
-        mesh, state, info, status)
+        mesh, state, info, status, ct%node_gap, ct%work, ct%pairs(:)%work)
     ok = status%ok()
     if (ok) then
       call dump_series_update(trim(config%output%directory)//'/'//trim(config%output%prefix), &
           trim(path), config%title, state%cycle, state%time, mesh%nnode_global, &
-          mesh%nzone_global, allocated(state%zone_stress), allocated(state%node_contact_gap))
+          mesh%nzone_global, allocated(state%zone_stress), allocated(ct%node_gap))
       if (par_rank() == 0) write(output_unit, '(a)') '  dump '//trim(path)
     else if (par_rank() == 0) then
       write(error_unit, '(a)') 'error: '//trim(status%messages(1))
@@ -105,11 +106,12 @@ contains
   !> since the last line (wall_last and cycle_last, updated here), then
   !> progress: percent of t_end, wall time since the start (or restart) and
   !> the time left at the recent rate (eta_t). Section 'status' of timers.
-  subroutine status_line(config, mesh, state, ctl, eta, wall_start, wall_last, cycle_last, &
+  subroutine status_line(config, mesh, state, ct, ctl, eta, wall_start, wall_last, cycle_last, &
       timers)
     type(config_t), intent(in) :: config
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(in) :: state
+    type(contact_t), intent(in) :: ct !< the contact work of the energy balance
     type(control_t), intent(in) :: ctl
     type(eta_t), intent(in) :: eta
     real(rk), intent(in) :: wall_start
@@ -131,7 +133,7 @@ contains
       if (left >= 0.0_rk) eta_text = fixed_text(left, 2)//' s'
       write(output_unit, '(a,i8,a,es11.4,a,es10.3,a,a,a,i0,a,es9.2,a,es9.2,a,f5.1,a)') &
           'cycle', state%cycle, '  t=', state%time, '  dt=', state%dt, ' (', reason, &
-          ' zone ', ctl%dt_zone, ')  dE/E=', relative_error(sums(1) + sums(2), state), &
+          ' zone ', ctl%dt_zone, ')  dE/E=', relative_error(sums(1) + sums(2), state, ct%work), &
           '  ', rate, ' zone-cycles/s  ', min(100.0_rk, 100.0_rk * state%time / config%t_end), &
           '% done  elapsed '//fixed_text(wall_time() - wall_start, 2)//' s  ETA '//eta_text
       flush(output_unit)

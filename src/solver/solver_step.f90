@@ -12,7 +12,7 @@ module solver_step
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux
   use contact_enforce, only: contact_t, contact_apply, contact_work_update
-  use contact_monitor, only: contact_audit_run, contact_step_end
+  use contact_monitor, only: contact_audit_run, contact_step_end, contact_audit_due
   use parallel_env, only: par_sum_exact
   use solver_schedule, only: schedule_t
   implicit none
@@ -43,7 +43,7 @@ contains
     type(exact_sum_t) :: work(2) !< boundary, contact work of the step
     call timers%start('step')
     state%dt = dt
-    if (ct%npair > 0) ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
+    ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
     if (opt%single_stage) then
       call solver_single_step(opt, materials, mesh, state, mz, bc, dt, bad, work(1), timers)
       bad_half = 0
@@ -54,22 +54,16 @@ contains
     ! Exact sums: the works, and so the history, do not depend on the rank count.
     call par_sum_exact(work)
     state%boundary_work = state%boundary_work + exact_value(work(1))
-    if (ct%npair > 0) then
-      state%contact_work = state%contact_work + exact_value(work(2))
-      call contact_step_end(ct)
-      state%contact_pair_work = ct%pairs(:)%work
-    end if
+    call contact_step_end(ct, exact_value(work(2)))
     state%time = plan%land(state%time, dt)
     state%cycle = state%cycle + 1
     state%dt_previous = plan%dt_stable
     call timers%stop('step')
-    if (ct%npair > 0) then
-      if (ct%audit_due .or. plan%audit_due(state%cycle)) call solver_audit(ct, state, timers)
-    end if
+    if (contact_audit_due(ct, plan%audit_due(state%cycle))) call solver_audit(ct, state, timers)
   end subroutine solver_cycle
 
   !> The contact audit at x^n of the state (section 'audit' of timers); its
-  !> gaps go to the state for the dumps.
+  !> gaps stay in the contact for the dumps. Nothing without an interface.
   subroutine solver_audit(ct, state, timers)
     type(contact_t), intent(inout) :: ct
     type(state_t), intent(inout) :: state
@@ -78,8 +72,6 @@ contains
     call contact_audit_run(ct, state%node_position, state%cycle, state%time)
     call timers%stop('audit')
     ct%audit_seconds = ct%audit_seconds + timers%last('audit')
-    state%node_contact_gap = 0.0_rk
-    state%node_contact_gap(ct%own_local) = ct%gap_own
   end subroutine solver_audit
 
   !> One predictor-corrector cycle from t^n to t^n+1: forces at t^n, contact
@@ -116,13 +108,12 @@ contains
     end if
     ! Contact acts on the predictor's half step too, as the rigid wall does:
     ! otherwise the half-step geometry interpenetrates freely and the contact
-    ! pressure lags half a step (the mirror test shows it).
-    if (ct%npair > 0) then
-      call timers%start('contact')
-      call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-          state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
-      call timers%stop('contact')
-    end if
+    ! pressure lags half a step (the mirror test shows it). (The contact
+    ! entries do nothing when the deck has no interface.)
+    call timers%start('contact')
+    call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
+        state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
+    call timers%stop('contact')
     call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half)
     call timers%start('halo')
     call mesh%node_halo%exchange(state%node_velocity_half)
@@ -144,19 +135,15 @@ contains
           state%node_velocity_half, dt)
     end if
     ! Contact on the final update, boundary conditions re-imposed after it.
-    if (ct%npair > 0) then
-      call timers%start('contact')
-      call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-          state%node_force, dt, state%cycle + 1, .true., wall_time)
-      call timers%stop('contact')
-    end if
+    call timers%start('contact')
+    call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
+        state%node_force, dt, state%cycle + 1, .true., wall_time)
+    call timers%stop('contact')
     call hydro_velocity_update(mesh, state, bc, dt, state%node_velocity, work)
-    if (ct%npair > 0) then
-      call timers%start('contact')
-      call contact_work_update(ct, state%node_velocity_old, state%node_velocity, dt, &
-          contact_work)
-      call timers%stop('contact')
-    end if
+    call timers%start('contact')
+    call contact_work_update(ct, state%node_velocity_old, state%node_velocity, dt, &
+        contact_work)
+    call timers%stop('contact')
     call timers%start('halo')
     call mesh%node_halo%exchange(state%node_velocity)
     call timers%stop('halo')

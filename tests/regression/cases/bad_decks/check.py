@@ -192,6 +192,13 @@ def build_cases():
                          "initial_penetration = 'push' /\n"),
                   ["&contact(1): initial_penetration: 'push' is not a choice "
                    "(valid: error, adjust, ignore)"]))
+    c.append(Case("contact_block_unknown",
+                  append("&contact surface_a = 'block:tube', surface_b = 'block:nope', "
+                         "method = 'dlm' /\n"),
+                  ["'block:nope': no block 'nope'"]))
+    c.append(Case("contact_blocks_and_sets",
+                  append("&contact surface_a = 'block:tube, xmax', method = 'dlm' /\n"),
+                  ["'xmax': a surface is either face sets or blocks (block:NAME), not both"]))
     c.append(Case("mesh_rotation_without_axis",
                   lambda t: t.replace("  nz = 1\n/", "  nz = 1\n  rotation_angle = 30.0\n/", 1),
                   ["&mesh: rotation_axis: required with rotation_angle"]))
