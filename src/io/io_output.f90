@@ -22,6 +22,7 @@ module io_output
   use solver_eta, only: eta_t
   use parallel_env, only: par_rank, par_size, par_sum_array, par_max, par_allgather
   use core_memory, only: peak_memory_mb
+  use core_sort, only: sort_values
   use io_deck, only: config_t
   use io_dump, only: dump_write, dump_series_update, run_info_t
   use io_history, only: history_write, relative_error
@@ -328,24 +329,14 @@ contains
   subroutine memory_report()
     real(rk) :: mine(1)
     real(rk), allocatable :: all(:, :), sorted(:)
-    integer :: k, j, n, largest
-    real(rk) :: v
+    integer :: n, largest
     n = par_size()
     allocate(all(1, n), sorted(n))
     mine(1) = peak_memory_mb()
     call par_allgather(mine, all)
     if (par_rank() /= 0) return
     sorted = all(1, :)
-    do k = 2, n
-      v = sorted(k)
-      j = k - 1
-      do while (j >= 1)
-        if (sorted(j) <= v) exit
-        sorted(j + 1) = sorted(j)
-        j = j - 1
-      end do
-      sorted(j + 1) = v
-    end do
+    call sort_values(sorted)
     largest = maxloc(all(1, :), dim=1)
     write(output_unit, '(a,f0.1,a,f0.1,a,f0.1,a,i0,a)') 'impact3d: peak memory per rank (VmHWM): rank 0 ', &
         all(1, 1), ' MB, median ', sorted((n + 1) / 2), ' MB, largest ', all(1, largest), &

@@ -8,7 +8,7 @@
 !> mesh_build_local makes from the whole mesh with the same zone owners.
 module mesh_distribute
   use core_kinds, only: rk, ik, i8
-  use core_sort, only: sort_order, sort_unique
+  use core_sort, only: sort_order, sort_unique, sort_values
   use core_timer, only: timers_t
   use mesh_geometry, only: HEX_FACE_NODES
   use mesh_local, only: mesh_t
@@ -186,7 +186,7 @@ contains
     integer(i8), intent(inout) :: bytes
     integer(i8), allocatable :: send(:, :), recv(:, :), reply(:, :), back(:, :), nodes(:)
     integer, allocatable :: dest(:), source(:), order(:), rdest(:), lconn(:, :), start(:), list(:)
-    integer(i8) :: key(4), t
+    integer(i8) :: key(4)
     integer :: i, f, m, a, b, j, q, nrecv, other, n, nn, o, g, fn(4)
     n = range%nzone
     allocate(nbr(6, n), nbrf(6, n))
@@ -245,16 +245,7 @@ contains
       do f = 1, 6
         if (nbr(f, i) /= 0) cycle
         key = range%conn(HEX_FACE_NODES(:, f), i)
-        do a = 2, 4
-          t = key(a)
-          b = a - 1
-          do while (b >= 1)
-            if (key(b) <= t) exit
-            key(b + 1) = key(b)
-            b = b - 1
-          end do
-          key(b + 1) = t
-        end do
+        call sort_values(key)
         m = m + 1
         send(:, m) = [key, range%first + i - 1, int(f, i8)]
         dest(m) = par_block_owner(range%nnode_global, par_size(), key(1))

@@ -5,7 +5,7 @@ module mesh_global
   use core_status, only: status_t
   implicit none
   private
-  public :: box_spec_t, mesh_make_box, interval_points, mesh_append
+  public :: box_spec_t, mesh_make_box, interval_points, mesh_append, box_position
 
   integer, parameter, public :: MAX_INTERVALS = 16
   integer, parameter, public :: NAME_LEN = 32
@@ -104,8 +104,7 @@ contains
     type(global_mesh_t), intent(inout) :: mesh
     type(status_t), intent(inout) :: status
     real(rk), allocatable :: px(:), py(:), pz(:)
-    integer :: nx, ny, nz, i, j, k, n, z, s, f, count_face
-    real(rk) :: xmin, xmax, ymin, ymax, pi
+    integer :: nx, ny, nz, i, j, k, z, s, f, count_face
 
     call mesh%free()
     call interval_points(spec%nint(1), spec%breaks(:, 1), spec%zones(:, 1), spec%ratio(:, 1), px)
@@ -123,28 +122,10 @@ contains
     allocate(mesh%coordinates(3, mesh%nnode), mesh%connectivity(8, mesh%nzone))
     allocate(mesh%zone_block(mesh%nzone))
     mesh%zone_block = 0
-    pi = acos(-1.0_rk)
-    xmin = px(0)
-    xmax = px(nx)
-    ymin = py(0)
-    ymax = py(ny)
     do k = 0, nz
       do j = 0, ny
         do i = 0, nx
-          n = node_id(i, j, k)
-          mesh%coordinates(:, n) = [px(i), py(j), pz(k)]
-          if (spec%skew_amplitude /= 0.0_rk) then
-            mesh%coordinates(1, n) = px(i) + spec%skew_amplitude * (ymax - py(j)) / &
-                (ymax - ymin) * sin(pi * (px(i) - xmin) / (xmax - xmin))
-          end if
-          ! Interior nodes only, so the faces stay planar; deterministic in the node id.
-          if (spec%perturb > 0.0_rk .and. i > 0 .and. i < nx .and. j > 0 .and. j < ny &
-              .and. k > 0 .and. k < nz) then
-            mesh%coordinates(:, n) = mesh%coordinates(:, n) + spec%perturb * &
-                [min(px(i) - px(i - 1), px(i + 1) - px(i)) * unit_hash(n, 1), &
-                min(py(j) - py(j - 1), py(j + 1) - py(j)) * unit_hash(n, 2), &
-                min(pz(k) - pz(k - 1), pz(k + 1) - pz(k)) * unit_hash(n, 3)]
-          end if
+          mesh%coordinates(:, node_id(i, j, k)) = box_position(spec, px, py, pz, i, j, k)
         end do
       end do
     end do
@@ -183,16 +164,6 @@ contains
 
   contains
 
-    !> A number in [-0.5, 0.5) from a node id and a component (integer hash).
-    pure real(rk) function unit_hash(id, comp)
-      integer, intent(in) :: id, comp
-      integer(i8) :: h
-      h = int(id, i8) * 2654435761_i8 + int(comp, i8) * 40503_i8
-      h = modulo(ieor(h, ishft(h, -13)), 2147483648_i8)
-      h = modulo(h * 1103515245_i8 + 12345_i8, 2147483648_i8)
-      unit_hash = real(h, rk) / 2147483648.0_rk - 0.5_rk
-    end function unit_hash
-
     pure integer function node_id(ii, jj, kk)
       integer, intent(in) :: ii, jj, kk
       node_id = 1 + ii + (nx + 1) * (jj + (ny + 1) * kk)
@@ -223,6 +194,47 @@ contains
     end function face_of_set
 
   end subroutine mesh_make_box
+
+  !> The position of box node (i, j, k) (0-based) on the interval points
+  !> px, py, pz: the Saltzman skew of x, then the perturbation of interior
+  !> nodes (deterministic in the node id). Every box generator uses it, so
+  !> whole and distributed boxes agree bit for bit.
+  pure function box_position(spec, px, py, pz, i, j, k) result(x)
+    type(box_spec_t), intent(in) :: spec
+    real(rk), intent(in) :: px(0:), py(0:), pz(0:)
+    integer, intent(in) :: i, j, k
+    real(rk) :: x(3)
+    integer :: nx, ny, nz, n
+    real(rk) :: pi
+    nx = ubound(px, 1)
+    ny = ubound(py, 1)
+    nz = ubound(pz, 1)
+    x = [px(i), py(j), pz(k)]
+    if (spec%skew_amplitude /= 0.0_rk) then
+      pi = acos(-1.0_rk)
+      x(1) = px(i) + spec%skew_amplitude * (py(ny) - py(j)) / &
+          (py(ny) - py(0)) * sin(pi * (px(i) - px(0)) / (px(nx) - px(0)))
+    end if
+    ! Interior nodes only, so the faces stay planar.
+    if (spec%perturb > 0.0_rk .and. i > 0 .and. i < nx .and. j > 0 .and. j < ny &
+        .and. k > 0 .and. k < nz) then
+      n = 1 + i + (nx + 1) * (j + (ny + 1) * k)
+      x = x + spec%perturb * &
+          [min(px(i) - px(i - 1), px(i + 1) - px(i)) * unit_hash(n, 1), &
+          min(py(j) - py(j - 1), py(j + 1) - py(j)) * unit_hash(n, 2), &
+          min(pz(k) - pz(k - 1), pz(k + 1) - pz(k)) * unit_hash(n, 3)]
+    end if
+  end function box_position
+
+  !> A number in [-0.5, 0.5) from a node id and a component (integer hash).
+  pure real(rk) function unit_hash(id, comp)
+    integer, intent(in) :: id, comp
+    integer(i8) :: h
+    h = int(id, i8) * 2654435761_i8 + int(comp, i8) * 40503_i8
+    h = modulo(ieor(h, ishft(h, -13)), 2147483648_i8)
+    h = modulo(h * 1103515245_i8 + 12345_i8, 2147483648_i8)
+    unit_hash = real(h, rk) / 2147483648.0_rk - 0.5_rk
+  end function unit_hash
 
   !> Append the mesh part to mesh (nodes, zones and face sets renumbered after
   !> those already there; parts stay disconnected, sharing no node). Each face

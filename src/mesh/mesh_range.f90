@@ -7,7 +7,7 @@
 module mesh_range
   use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
-  use mesh_global, only: global_mesh_t, box_spec_t, interval_points, NAME_LEN
+  use mesh_global, only: global_mesh_t, box_spec_t, interval_points, box_position, NAME_LEN
   use parallel_env, only: par_rank, par_size
   use parallel_route, only: par_block_range
   implicit none
@@ -100,7 +100,6 @@ contains
     integer, parameter :: CORNER(3, 8) = reshape([0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, &
         0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1], [3, 8])
     integer, parameter :: FACE_OF_SET(6) = [6, 4, 3, 5, 1, 2]
-    real(rk) :: xmin, xmax, ymin, ymax, pi
     logical :: on(6)
     integer(i8) :: ord(6)
 
@@ -115,11 +114,6 @@ contains
     lo = int(zfirst - range%first) + 1
     hi = int(zlast - range%first) + 1
     if (zlast < zfirst) return
-    pi = acos(-1.0_rk)
-    xmin = px(0)
-    xmax = px(nx)
-    ymin = py(0)
-    ymax = py(ny)
     ! Count the set faces first.
     nnew = 0
     do g = zfirst, zlast
@@ -137,8 +131,8 @@ contains
       do c = 1, 8
         range%conn(c, local) = node0 + node_id(i + CORNER(1, c), j + CORNER(2, c), &
             k + CORNER(3, c))
-        range%corner_x(:, c, local) = position(i + CORNER(1, c), j + CORNER(2, c), &
-            k + CORNER(3, c))
+        range%corner_x(:, c, local) = box_position(spec, px, py, pz, i + CORNER(1, c), &
+            j + CORNER(2, c), k + CORNER(3, c))
       end do
       on = [i == 0, i == nx - 1, j == 0, j == ny - 1, k == 0, k == nz - 1]
       ord = int([1 + j + ny * k, 1 + j + ny * k, 1 + i + nx * k, 1 + i + nx * k, &
@@ -176,38 +170,8 @@ contains
       node_id = 1_i8 + ii + int(nx + 1, i8) * (jj + int(ny + 1, i8) * kk)
     end function node_id
 
-    !> The position mesh_make_box gives node (ii, jj, kk).
-    function position(ii, jj, kk) result(x)
-      integer, intent(in) :: ii, jj, kk
-      real(rk) :: x(3)
-      integer(i8) :: n
-      x = [px(ii), py(jj), pz(kk)]
-      if (spec%skew_amplitude /= 0.0_rk) then
-        x(1) = px(ii) + spec%skew_amplitude * (ymax - py(jj)) / &
-            (ymax - ymin) * sin(pi * (px(ii) - xmin) / (xmax - xmin))
-      end if
-      if (spec%perturb > 0.0_rk .and. ii > 0 .and. ii < nx .and. jj > 0 .and. jj < ny &
-          .and. kk > 0 .and. kk < nz) then
-        n = node_id(ii, jj, kk)
-        x = x + spec%perturb * &
-            [min(px(ii) - px(ii - 1), px(ii + 1) - px(ii)) * unit_hash(int(n), 1), &
-            min(py(jj) - py(jj - 1), py(jj + 1) - py(jj)) * unit_hash(int(n), 2), &
-            min(pz(kk) - pz(kk - 1), pz(kk + 1) - pz(kk)) * unit_hash(int(n), 3)]
-      end if
-    end function position
 
   end subroutine range_add_box
-
-  !> A number in [-0.5, 0.5) from a node id and a component (the integer
-  !> hash of mesh_make_box's perturbation).
-  pure real(rk) function unit_hash(id, comp)
-    integer, intent(in) :: id, comp
-    integer(i8) :: h
-    h = int(id, i8) * 2654435761_i8 + int(comp, i8) * 40503_i8
-    h = modulo(ieor(h, ishft(h, -13)), 2147483648_i8)
-    h = modulo(h * 1103515245_i8 + 12345_i8, 2147483648_i8)
-    unit_hash = real(h, rk) / 2147483648.0_rk - 0.5_rk
-  end function unit_hash
 
   !> The zones of a part built whole (curved generators, imported files)
   !> that lie in this rank's range; the part's set k goes to the range's

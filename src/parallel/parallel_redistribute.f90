@@ -5,6 +5,7 @@ module parallel_redistribute
   use mpi_f08
   use core_kinds, only: rk, ik, i8
   use parallel_env, only: par_comm, par_size, par_rank, par_abort
+  use parallel_route, only: par_block_range, par_block_owner
   implicit none
   private
 
@@ -28,39 +29,6 @@ module parallel_redistribute
 
 contains
 
-  !> First global id and count of rank r's block of nglobal items.
-  pure subroutine block_range(nglobal, nrank, r, first, n)
-    integer(i8), intent(in) :: nglobal
-    integer, intent(in) :: nrank, r
-    integer(i8), intent(out) :: first
-    integer, intent(out) :: n
-    integer(i8) :: lo, hi
-    lo = (nglobal * r) / nrank
-    hi = (nglobal * (r + 1)) / nrank
-    first = lo + 1
-    n = int(hi - lo)
-  end subroutine block_range
-
-  !> Rank of the block that holds global id g.
-  pure integer function block_owner(nglobal, nrank, g) result(r)
-    integer(i8), intent(in) :: nglobal, g
-    integer, intent(in) :: nrank
-    integer(i8) :: first
-    integer :: n
-    r = int(((g - 1) * nrank) / nglobal)
-    ! Correct for the integer rounding of the block boundaries.
-    do
-      call block_range(nglobal, nrank, r, first, n)
-      if (g < first) then
-        r = r - 1
-      else if (g >= first + n) then
-        r = r + 1
-      else
-        exit
-      end if
-    end do
-  end function block_owner
-
   !> Plan for the owned items with global ids gid(1:nlocal) (1-based ids).
   subroutine redistribute_init(this, gid, nglobal)
     class(redistribute_t), intent(inout) :: this
@@ -76,13 +44,13 @@ contains
     nrank = par_size()
     this%nglobal = nglobal
     this%nlocal = size(gid)
-    call block_range(nglobal, nrank, par_rank(), this%first, this%nblock)
+    call par_block_range(nglobal, nrank, par_rank(), this%first, this%nblock)
     allocate(this%send_count(0:nrank - 1), this%send_displ(0:nrank - 1))
     allocate(this%recv_count(0:nrank - 1), this%recv_displ(0:nrank - 1))
     allocate(dest(this%nlocal))
     this%send_count = 0
     do i = 1, this%nlocal
-      dest(i) = block_owner(nglobal, nrank, gid(i))
+      dest(i) = par_block_owner(nglobal, nrank, gid(i))
       this%send_count(dest(i)) = this%send_count(dest(i)) + 1
     end do
     call MPI_Alltoall(this%send_count, 1, MPI_INTEGER, this%recv_count, 1, MPI_INTEGER, comm)
