@@ -79,12 +79,9 @@ contains
         .or. config%boundaries(:)%kind == BC_WALL)
     if (size(config%contacts) > 0) then
       call timers%start('contact set-up')
-      call contact_initial(config%contacts, global, mesh, bc%symmetry_planes, offsets, status, &
-          sides)
-      ! Initial overlaps may have moved nodes.
-      do n = 1, mesh%nnode
-        coordinates(:, n) = global%coordinates(:, mesh%node_gid(n))
-      end do
+      ! (initial overlaps may move nodes)
+      call contact_initial(config%contacts, mesh, coordinates, bc%symmetry_planes, offsets, &
+          status, sides)
       call timers%stop('contact set-up')
     end if
     if (status%ok()) call setup_state(config, coordinates, mesh, bc, state, mz, status)
@@ -92,7 +89,7 @@ contains
         config%output%directory, config%units, probes, status)
     if (status%ok()) then
       call timers%start('contact set-up')
-      call contact_setup(config%contacts, global, mesh, state%node_position, state%node_mass, &
+      call contact_setup(config%contacts, mesh, state%node_position, state%node_mass, &
           ct, status, offsets, bc%symmetry_planes, boundary_prescribed(bc, &
           size(state%node_mass)), sides)
       call timers%stop('contact set-up')
@@ -194,9 +191,9 @@ contains
   !> zone by zone; curved and imported parts are still built whole on every
   !> rank and cut to the range), blocks, the parallel partition and the
   !> distribution (mesh_distribute), the boundaries and the contact surfaces'
-  !> names. coordinates are the local nodes' initial positions. A deck with
-  !> &contact also gets the whole mesh in global (contact set-up still uses
-  !> it), built from the same parts.
+  !> names. coordinates are the local nodes' initial positions. With whole,
+  !> the whole mesh is also built in global from the same parts (tests that
+  !> compare with a brute force over the whole mesh; never in a run).
   subroutine setup_mesh(config, global, mesh, coordinates, bc, timers, status, whole)
     type(config_t), intent(in) :: config
     type(global_mesh_t), intent(inout) :: global
@@ -205,8 +202,8 @@ contains
     type(boundary_t), intent(inout) :: bc
     type(timers_t), intent(inout) :: timers
     type(status_t), intent(inout) :: status
-    !> build the whole mesh in global even without &contact (tests comparing
-    !> with a brute force over the whole mesh)
+    !> build the whole mesh in global too (tests comparing with a brute
+    !> force over the whole mesh)
     logical, intent(in), optional :: whole
     character(len=NAME_LEN), allocatable :: group_names(:)
     type(global_mesh_t), allocatable :: pieces(:)
@@ -224,8 +221,8 @@ contains
 
     claimed = .false.
     imported = ''
-    need_global = size(config%contacts) > 0
-    if (present(whole)) need_global = need_global .or. whole
+    need_global = .false.
+    if (present(whole)) need_global = whole
     call global%free()
     allocate(global%coordinates(3, 0), global%connectivity(8, 0), global%zone_block(0))
     call timers%start('mesh generate')

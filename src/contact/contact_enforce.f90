@@ -50,7 +50,6 @@ module contact_enforce
   use core_status, only: status_t
   use core_sort, only: sort_values, sort_unique
   use, intrinsic :: iso_fortran_env, only: output_unit
-  use mesh_global, only: global_mesh_t
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_node_index, set_names_of
@@ -82,10 +81,9 @@ contains
 
   !> Build the contact surfaces in contact-index space, the owned-node map and
   !> the nodal masses. Problems go to status (group, key, reason).
-  subroutine contact_setup(specs, global, mesh, x, node_mass, ct, status, offsets, planes, &
+  subroutine contact_setup(specs, mesh, x, node_mass, ct, status, offsets, planes, &
       rigid, context)
     type(contact_spec_t), intent(in) :: specs(:)
-    type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
     real(rk), intent(in) :: x(:, :) !< (3, nnode local) node positions
     real(rk), intent(in) :: node_mass(:) !< (nnode local) nodal masses
@@ -135,9 +133,9 @@ contains
         call move_alloc(methods(k)%method, p%method)
         ! The method's sides: for DAM, b is the master side.
         call p%method%sides(specs(k), side_a, side_b)
-        call side_surface(side_a, side_b, global, mesh, sides, 'contact '''// &
+        call side_surface(side_a, side_b, mesh, sides, 'contact '''// &
             trim(specs(k)%name)//'''', raw_a(k), status)
-        call side_surface(side_b, side_a, global, mesh, sides, 'contact '''// &
+        call side_surface(side_b, side_a, mesh, sides, 'contact '''// &
             trim(specs(k)%name)//'''', raw_b(k), status)
         if (p%method%reverse_pass()) then
           ! The reverse pass: the same interface with the sides swapped.

@@ -21,8 +21,8 @@ module contact_monitor
   use core_exact_sum, only: exact_sum_t, exact_value
   use core_status, only: status_t
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-  use mesh_global, only: global_mesh_t
-  use contact_surface, only: contact_surface_t, surface_build, set_names_of
+  use core_sort, only: sort_unique
+  use contact_surface, only: contact_surface_t, surface_from_segments
   use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
   use contact_state, only: contact_spec_t, interface_t, contact_t, contact_method_t, &
       initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN
@@ -93,27 +93,32 @@ contains
   !> the penetrating nodes of one side (DAM: the slave; DLM: surface_a) onto
   !> the other surface, 'ignore' keeps every penetration as an offset.
   !> Penetration within the tolerance is an offset under every option.
-  !> Every rank computes the same; collective only for surfaces given by
-  !> blocks (their faces come from each rank's local mesh).
-  subroutine contact_initial(specs, global, mesh, planes, offsets, status, context)
+  !> The surfaces come from each rank's local mesh and the positions of
+  !> their nodes from the nodes' owners, so every rank computes the same
+  !> with no whole-mesh array; a moved node is moved in x on every rank that
+  !> holds it. Collective.
+  subroutine contact_initial(specs, mesh, x, planes, offsets, status, context)
     type(contact_spec_t), intent(in) :: specs(:)
-    type(global_mesh_t), intent(inout) :: global
     type(mesh_t), intent(in) :: mesh
+    real(rk), intent(inout) :: x(:, :) !< (3, nnode local) node positions
     real(rk), intent(in) :: planes(:, :) !< (4, n) the deck's symmetry planes
     type(initial_offsets_t), allocatable, intent(out) :: offsets(:)
     type(status_t), intent(inout) :: status
     !> the deck's blocks and closed face sets, for surfaces given by blocks
     type(side_context_t), intent(in), optional :: context
     type(side_context_t) :: sides
-    type(contact_surface_t) :: sa, sb
+    type(contact_surface_t) :: sa, sb, ga, gb
     type(side_t) :: ra, rb
     character(len=SURFACE_LEN) :: slave_set, master_set
     class(contact_method_t), allocatable :: method
     logical :: single
     character(len=600) :: text
     character(len=:), allocatable :: where
+    integer(i8), allocatable :: gid(:)
+    real(rk), allocatable :: xc(:, :)
     real(rk) :: reach, moved, deepest, where_x(3)
-    integer :: k, i, nbeyond_a, nbeyond_b, deepest_node, bins(4)
+    integer :: k, i, n, nbeyond_a, nbeyond_b, deepest_node, bins(4)
+    integer(i8) :: deepest_gid
     logical :: self, ok
 
     if (present(context)) then
@@ -128,14 +133,17 @@ contains
       call contact_method_new(specs(k), .false., method, single)
       call method%sides(specs(k), slave_set, master_set)
       ok = status%ok()
-      call side_surface(slave_set, master_set, global, mesh, sides, trim(where), sa, status)
-      call side_surface(master_set, slave_set, global, mesh, sides, trim(where), sb, status)
-      allocate(offsets(k)%a(sa%nnode), offsets(k)%b(sb%nnode))
+      call side_surface(slave_set, master_set, mesh, sides, trim(where), ga, status)
+      call side_surface(master_set, slave_set, mesh, sides, trim(where), gb, status)
+      allocate(offsets(k)%a(ga%nnode), offsets(k)%b(gb%nnode))
       offsets(k)%a = 0.0_rk
       offsets(k)%b = 0.0_rk
       if (.not. status%ok() .or. .not. ok) cycle
+      ! The interface's nodes (ascending global id), their positions, and
+      ! the two surfaces in that numbering.
+      call surface_positions(mesh, x, ga, gb, gid, xc, sa, sb)
       self = specs(k)%surface_a == specs(k)%surface_b
-      reach = audit_reach(global%coordinates, sa, sb)
+      reach = audit_reach(xc, sa, sb)
       call both_sides()
       nbeyond_a = count(ra%pen > ra%tol)
       nbeyond_b = 0
@@ -149,7 +157,7 @@ contains
         write(text, '(a,i0,a,i0,a,i0,a,3es13.5,a,es10.3,a,es10.3,a,4(i0,a))') &
             'impact3d: '//where//': initial penetration beyond the tolerance: ', &
             nbeyond_a, ' nodes of surface a, ', nbeyond_b, ' of surface b; deepest node ', &
-            deepest_node, ' at (', where_x, ') by ', deepest, ' (tolerance ', &
+            deepest_gid, ' at (', where_x, ') by ', deepest, ' (tolerance ', &
             tolerance_of(deepest_node), '); depth/tolerance 1-2: ', bins(1), ', 2-4: ', &
             bins(2), ', 4-8: ', bins(3), ', > 8: ', bins(4), ''
         write(output_unit, '(a)') trim(text)
@@ -158,7 +166,7 @@ contains
       case ('error')
         write(text, '(a,i0,a,i0,a,3es13.5,a,es10.3,a)') &
             ': initial_penetration: ', nbeyond_a + nbeyond_b, &
-            ' node(s) penetrate the other surface at set-up; the deepest, node ', deepest_node, &
+            ' node(s) penetrate the other surface at set-up; the deepest, node ', deepest_gid, &
             ' at (', where_x, '), by ', deepest, '; move the parts apart, or set '// &
             'initial_penetration = ''adjust'' (move them onto the other surface) or '// &
             '''ignore'' (keep the overlap)'
@@ -168,9 +176,13 @@ contains
         moved = 0.0_rk
         do i = 1, sa%nnode
           if (.not. ra%pen(i) > ra%tol(i)) cycle
-          global%coordinates(:, sa%nodes(i)) = global%coordinates(:, sa%nodes(i)) + &
-              (-ra%gap(i)) * ra%inward(:, i)
+          xc(:, sa%nodes(i)) = xc(:, sa%nodes(i)) + (-ra%gap(i)) * ra%inward(:, i)
           moved = max(moved, -ra%gap(i))
+        end do
+        ! Every copy of a moved node moves (owned and ghost alike).
+        do n = 1, mesh%nnode
+          i = ascending_find(gid, mesh%node_gid(n))
+          if (i > 0) x(:, n) = xc(:, i)
         end do
         call both_sides()
         call keep_within()
@@ -198,9 +210,9 @@ contains
       allocate(zero_a(sa%nnode), zero_b(sb%nnode))
       zero_a = 0.0_rk
       zero_b = 0.0_rk
-      call audit_side(global%coordinates, sa, sb, self, reach, specs(k)%penetration_tolerance, &
+      call audit_side(xc, sa, sb, self, reach, specs(k)%penetration_tolerance, &
           zero_a, [(.true., i = 1, sa%nnode)], planes, ra)
-      if (.not. self) call audit_side(global%coordinates, sb, sa, .false., reach, &
+      if (.not. self) call audit_side(xc, sb, sa, .false., reach, &
           specs(k)%penetration_tolerance, zero_b, [(.true., i = 1, sb%nnode)], planes, rb)
     end subroutine both_sides
 
@@ -226,7 +238,8 @@ contains
           if (rb%pen(j) > rb%tol(j)) call add(rb%pen(j), rb%tol(j), int(sb%nodes(j)))
         end do
       end if
-      where_x = global%coordinates(:, deepest_node)
+      where_x = xc(:, deepest_node)
+      deepest_gid = gid(deepest_node)
     end subroutine deepest_of
 
     subroutine add(pen, tol, node)
@@ -264,6 +277,69 @@ contains
     end function tolerance_of
 
   end subroutine contact_initial
+
+  !> The nodes of surfaces ga and gb (global node ids) in ascending global
+  !> id, their positions from their owners (one sum over the ranks: each
+  !> node has one owner, zeros elsewhere), and the surfaces numbered by
+  !> position in gid. Collective.
+  subroutine surface_positions(mesh, x, ga, gb, gid, xc, sa, sb)
+    type(mesh_t), intent(in) :: mesh
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local)
+    type(contact_surface_t), intent(in) :: ga, gb
+    integer(i8), allocatable, intent(out) :: gid(:)
+    real(rk), allocatable, intent(out) :: xc(:, :) !< (3, size(gid))
+    type(contact_surface_t), intent(inout) :: sa, sb
+    real(rk), allocatable :: flat(:)
+    integer :: n, i
+    gid = [int(ga%nodes, i8), int(gb%nodes, i8)]
+    call sort_unique(gid)
+    allocate(flat(3 * size(gid)))
+    flat = 0.0_rk
+    do n = 1, mesh%nnode_owned
+      i = ascending_find(gid, mesh%node_gid(n))
+      if (i > 0) flat(3 * i - 2:3 * i) = x(:, n)
+    end do
+    call par_sum_array(flat)
+    xc = reshape(flat, [3, size(gid)])
+    call renumbered(ga, sa)
+    call renumbered(gb, sb)
+
+  contains
+
+    subroutine renumbered(g, s)
+      type(contact_surface_t), intent(in) :: g
+      type(contact_surface_t), intent(inout) :: s
+      integer(ik), allocatable :: segments(:, :)
+      integer :: j, c
+      allocate(segments(4, g%nseg))
+      do j = 1, g%nseg
+        do c = 1, 4
+          segments(c, j) = int(ascending_find(gid, int(g%segments(c, j), i8)), ik)
+        end do
+      end do
+      call surface_from_segments(segments, g%segment_id, xc, s)
+    end subroutine renumbered
+
+  end subroutine surface_positions
+
+  !> Index of key in the ascending array keys, 0 if absent.
+  pure integer function ascending_find(keys, key) result(i)
+    integer(i8), intent(in) :: keys(:)
+    integer(i8), intent(in) :: key
+    integer :: low, high
+    low = 1
+    high = size(keys)
+    do while (low <= high)
+      i = (low + high) / 2
+      if (keys(i) == key) return
+      if (keys(i) < key) then
+        low = i + 1
+      else
+        high = i - 1
+      end if
+    end do
+    i = 0
+  end function ascending_find
 
   !> The audit of every interface at positions x (local mesh nodes; the
   !> owned ones are read): history columns, the per-node smallest gap for

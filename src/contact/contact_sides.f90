@@ -7,10 +7,12 @@ module contact_sides
   use core_kinds, only: rk, ik, i8
   use core_sort, only: sort_order
   use core_status, only: status_t
-  use mesh_global, only: global_mesh_t, NAME_LEN
+  use mesh_global, only: NAME_LEN
+  use mesh_geometry, only: HEX_FACE_NODES
+  use core_names, only: name_hint
   use mesh_local, only: mesh_t
-  use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
-      set_names_of, contact_surface_rebuild
+  use contact_surface, only: contact_surface_t, surface_from_segments, set_names_of, &
+      contact_surface_rebuild
   use parallel_env, only: par_allgather, par_max, par_size
   implicit none
   private
@@ -75,9 +77,9 @@ contains
     type(side_context_t), intent(in) :: context
     integer(i8), allocatable, intent(out) :: ids(:) !< (n) (zone - 1) * 6 + face, ascending
     integer(ik), allocatable, intent(out) :: nodes(:, :) !< (4, n) global node ids
-    integer(i8), allocatable :: mine(:), my_nodes(:, :), record(:), all(:, :)
-    integer, allocatable :: excluded(:), perm(:)
-    integer :: i, s, n, nmax, r, count
+    integer(i8), allocatable :: mine(:), my_nodes(:, :), keys(:, :)
+    integer, allocatable :: excluded(:)
+    integer :: i, s
     allocate(excluded(0))
     do i = 1, size(context%closed_sets)
       do s = 1, mesh%nset
@@ -85,39 +87,100 @@ contains
       end do
     end do
     call contact_surface_rebuild(mesh, live, blocks, facing, excluded, mine, my_nodes)
+    allocate(keys(2, size(mine)))
+    keys(1, :) = 0
+    keys(2, :) = mine
+    call gather_faces(keys, mine, my_nodes, ids, nodes)
+  end subroutine block_faces
+
+  !> The faces of named face sets, in the order of the list and, within a
+  !> set, in the set's global order (the order of the whole mesh's set), on
+  !> every rank: each rank's owned zones' faces of the sets, gathered.
+  !> Unknown names go to status with the valid ones. Collective.
+  subroutine set_faces(mesh, names, where, ids, nodes, status)
+    type(mesh_t), intent(in) :: mesh
+    character(len=*), intent(in) :: names(:) !< face sets, in the surface's order
+    character(len=*), intent(in) :: where !< the deck group, for messages
+    integer(i8), allocatable, intent(out) :: ids(:) !< (n) (zone - 1) * 6 + face
+    integer(ik), allocatable, intent(out) :: nodes(:, :) !< (4, n) global node ids
+    type(status_t), intent(inout) :: status
+    integer(i8), allocatable :: keys(:, :), mine(:), my_nodes(:, :)
+    integer :: sets(size(names)), i, j, n, pass, z
+    sets = 0
+    do i = 1, size(names)
+      do j = 1, mesh%nset
+        if (mesh%set_name(j) == names(i)) sets(i) = j
+      end do
+      if (sets(i) == 0) call status%add(where//': no face set '''//trim(names(i))// &
+          ''' in the mesh'//name_hint(names(i), mesh%set_name(:mesh%nset)))
+    end do
+    if (any(sets == 0)) then
+      allocate(ids(0), nodes(4, 0))
+      return
+    end if
+    do pass = 1, 2
+      n = 0
+      do i = 1, size(names)
+        do j = mesh%set_start(sets(i)), mesh%set_start(sets(i) + 1) - 1
+          z = mesh%set_zone(j)
+          if (z > mesh%nzone_owned) cycle
+          n = n + 1
+          if (pass == 1) cycle
+          keys(:, n) = [int(i, i8), mesh%set_ord(j)]
+          mine(n) = (mesh%zone_gid(z) - 1_i8) * 6_i8 + int(mesh%set_face(j), i8)
+          my_nodes(:, n) = mesh%node_gid(mesh%zone_node(HEX_FACE_NODES(:, mesh%set_face(j)), z))
+        end do
+      end do
+      if (pass == 1) allocate(keys(2, n), mine(n), my_nodes(4, n))
+    end do
+    call gather_faces(keys, mine, my_nodes, ids, nodes)
+  end subroutine set_faces
+
+  !> Every rank's faces (id and nodes) on every rank, sorted by their keys
+  !> (columns, lexicographically; keys are unique). Collective: one
+  !> all-gather of fixed-size records (the largest rank's count).
+  subroutine gather_faces(keys, mine, my_nodes, ids, nodes)
+    integer(i8), intent(in) :: keys(:, :) !< (2, n) sort keys
+    integer(i8), intent(in) :: mine(:) !< (n) face ids
+    integer(i8), intent(in) :: my_nodes(:, :) !< (4, n) global node ids
+    integer(i8), allocatable, intent(out) :: ids(:)
+    integer(ik), allocatable, intent(out) :: nodes(:, :)
+    integer, parameter :: W = 7 !< key (2), id, 4 nodes
+    integer(i8), allocatable :: record(:), all(:, :), all_keys(:, :)
+    integer, allocatable :: perm(:)
+    integer :: i, n, nmax, r, count
     n = size(mine)
     nmax = par_max(n)
-    ! Fixed-size records: the count, then (id, 4 nodes) per face.
-    allocate(record(1 + 5 * nmax), all(1 + 5 * nmax, par_size()))
+    ! Fixed-size records: the count, then (key, id, 4 nodes) per face.
+    allocate(record(1 + W * nmax), all(1 + W * nmax, par_size()))
     record = 0
     record(1) = int(n, i8)
     do i = 1, n
-      record(1 + 5 * (i - 1) + 1) = mine(i)
-      record(1 + 5 * (i - 1) + 2:1 + 5 * i) = my_nodes(:, i)
+      record(1 + W * (i - 1) + 1:1 + W * i) = [keys(:, i), mine(i), my_nodes(:, i)]
     end do
     call par_allgather(record, all)
     count = int(sum(all(1, :)))
-    allocate(ids(count), nodes(4, count))
+    allocate(all_keys(2, count), ids(count), nodes(4, count))
     count = 0
     do r = 1, size(all, 2)
       do i = 1, int(all(1, r))
         count = count + 1
-        ids(count) = all(1 + 5 * (i - 1) + 1, r)
-        nodes(:, count) = int(all(1 + 5 * (i - 1) + 2:1 + 5 * i, r), ik)
+        all_keys(:, count) = all(1 + W * (i - 1) + 1:1 + W * (i - 1) + 2, r)
+        ids(count) = all(1 + W * (i - 1) + 3, r)
+        nodes(:, count) = int(all(1 + W * (i - 1) + 4:1 + W * i, r), ik)
       end do
     end do
-    call sort_order(ids, perm)
+    call sort_order(all_keys, perm)
     ids = ids(perm)
     nodes = nodes(:, perm)
-  end subroutine block_faces
+  end subroutine gather_faces
 
-  !> A side's surface (global node ids): named face sets of the global
-  !> mesh, or the exterior faces of blocks from the local mesh (every zone
-  !> live at set-up). other: the opposite side's list (its blocks are the
-  !> facing blocks; the same list is self-contact). Collective for blocks.
-  subroutine side_surface(list, other, global, mesh, context, where, surf, status)
+  !> A side's surface (global node ids): named face sets, or the exterior
+  !> faces of blocks (every zone live at set-up), both from each rank's
+  !> local mesh. other: the opposite side's list (its blocks are the facing
+  !> blocks; the same list is self-contact). Collective.
+  subroutine side_surface(list, other, mesh, context, where, surf, status)
     character(len=*), intent(in) :: list, other, where
-    type(global_mesh_t), intent(in) :: global
     type(mesh_t), intent(in) :: mesh
     type(side_context_t), intent(in) :: context
     type(contact_surface_t), intent(inout) :: surf
@@ -129,7 +192,8 @@ contains
     type(status_t) :: other_status
     integer :: i
     if (.not. side_is_blocks(list)) then
-      call surface_build(global, set_names_of(list), surf, status)
+      call set_faces(mesh, set_names_of(list), where, ids, nodes, status)
+      call surface_from_segments(nodes, ids, surf=surf)
       return
     end if
     call blocks_of(list, context, where, blocks, status)
@@ -143,7 +207,7 @@ contains
     allocate(live(mesh%nzone))
     live = .true.
     call block_faces(mesh, live, blocks, facing, context, ids, nodes)
-    call surface_from_segments(nodes, ids, global%coordinates, surf)
+    call surface_from_segments(nodes, ids, surf=surf)
   end subroutine side_surface
 
 end module contact_sides

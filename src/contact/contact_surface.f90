@@ -18,7 +18,7 @@
 !> the neighbour is the lowest-numbered other one.
 module contact_surface
   use core_kinds, only: rk, ik, i8
-  use core_sort, only: sort_values
+  use core_sort, only: sort_values, sort_unique
   use core_status, only: status_t
   use mesh_geometry, only: HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
@@ -215,8 +215,9 @@ contains
     !> (3, nnode) node positions (absent: no edge flags, every edge convex)
     real(rk), intent(in), optional :: x(:, :)
     type(contact_surface_t), intent(inout) :: surf
-    integer, allocatable :: local(:), fill(:)
-    integer :: nseg, s, k, n, max_id
+    integer, allocatable :: local(:, :), fill(:)
+    integer(i8), allocatable :: ids(:)
+    integer :: nseg, s, k, n
 
     call surf%free()
     nseg = size(segments, 2)
@@ -224,30 +225,24 @@ contains
     allocate(surf%segments(4, nseg), surf%segment_id(nseg))
     surf%segments = segments
     surf%segment_id = segment_id
-    max_id = 0
-    if (nseg > 0) max_id = maxval(segments)
-    ! Surface nodes: mark, then number in ascending global id.
-    allocate(local(max_id))
-    local = 0
+    ! Surface nodes in ascending global id (a sort: nothing sized by the
+    ! largest node id); local(k, s) is corner k's surface node.
+    ids = int(reshape(segments, [4 * nseg]), i8)
+    call sort_unique(ids)
+    surf%nnode = size(ids)
+    surf%nodes = int(ids, ik)
+    allocate(local(4, nseg))
     do s = 1, nseg
-      local(segments(:, s)) = 1
-    end do
-    surf%nnode = count(local == 1)
-    allocate(surf%nodes(surf%nnode))
-    n = 0
-    do k = 1, max_id
-      if (local(k) == 1) then
-        n = n + 1
-        surf%nodes(n) = int(k, ik)
-        local(k) = n
-      end if
+      do k = 1, 4
+        local(k, s) = ascending_index(ids, int(segments(k, s), i8))
+      end do
     end do
     ! Node -> segment CSR; segments are visited in order, so each list ascends.
     allocate(surf%node_start(surf%nnode + 1), fill(surf%nnode))
     fill = 0
     do s = 1, nseg
       do k = 1, 4
-        fill(local(segments(k, s))) = fill(local(segments(k, s))) + 1
+        fill(local(k, s)) = fill(local(k, s)) + 1
       end do
     end do
     surf%node_start(1) = 1
@@ -258,7 +253,7 @@ contains
     fill = 0
     do s = 1, nseg
       do k = 1, 4
-        n = local(segments(k, s))
+        n = local(k, s)
         surf%node_segments(surf%node_start(n) + fill(n)) = s
         fill(n) = fill(n) + 1
       end do
@@ -267,7 +262,7 @@ contains
     allocate(surf%neighbours(4, nseg), surf%edge_convex(4, nseg))
     do s = 1, nseg
       do k = 1, 4
-        surf%neighbours(k, s) = find_neighbour(s, segments(k, s), segments(edge_end(k), s))
+        surf%neighbours(k, s) = find_neighbour(s, local(k, s), segments(edge_end(k), s))
       end do
     end do
     if (present(x)) then
@@ -278,11 +273,10 @@ contains
 
   contains
 
-    integer function find_neighbour(self, a, b) result(t)
-      integer, intent(in) :: self
-      integer(ik), intent(in) :: a, b
-      integer :: i, na
-      na = local(a)
+    integer function find_neighbour(self, na, b) result(t)
+      integer, intent(in) :: self, na !< the segment, its edge's first surface node
+      integer(ik), intent(in) :: b !< the edge's second node (global id)
+      integer :: i
       do i = surf%node_start(na), surf%node_start(na + 1) - 1
         t = surf%node_segments(i)
         if (t /= self .and. any(segments(:, t) == b)) return
@@ -291,6 +285,25 @@ contains
     end function find_neighbour
 
   end subroutine surface_from_segments
+
+  !> Index of key in the ascending array keys, 0 if absent.
+  pure integer function ascending_index(keys, key) result(i)
+    integer(i8), intent(in) :: keys(:)
+    integer(i8), intent(in) :: key
+    integer :: low, high
+    low = 1
+    high = size(keys)
+    do while (low <= high)
+      i = (low + high) / 2
+      if (keys(i) == key) return
+      if (keys(i) < key) then
+        low = i + 1
+      else
+        high = i - 1
+      end if
+    end do
+    i = 0
+  end function ascending_index
 
   !> Recompute the convex flag of every edge from the current positions.
   subroutine surface_update_edges(surf, x)
