@@ -91,3 +91,42 @@ def run_stack(exe, k, n, workdir, mpiexec="mpirun", deck_text=None, extra=()):
     cmd = [mpiexec, "--oversubscribe", "-np", str(n), exe, *extra, "deck.nml"]
     r = subprocess.run(cmd, cwd=workdir, env=ENV, capture_output=True, text=True)
     return r.returncode, parse_report(r.stdout), r.stdout + r.stderr
+
+
+def contact_stack_deck(k, n, method="dlm", dumps=True):
+    """Deck text: the Al-on-steel pair stacked along z, one pair per rank.
+    Pair i: a 304 SS box [0, 1.2]^2 x [2.4 i, 2.4 i + 0.6] at rest under an
+    Al 6061 box [0, 1.2]^2 x [2.4 i + 0.6, 2.4 i + 1.2] at 0.01 cm/us along
+    -z, K x K x K/2 zones each (K^3 per pair); one interface whose sides are
+    the pairs' touching faces; symmetry planes xmin and ymin; t_end = 2/K
+    (about four cycles)."""
+    half = max(k // 2, 1)
+    dump = "  dump_cycles = 2\n" if dumps else ""
+    parts, regions = [], []
+    for i in range(n):
+        z0 = 2.4 * i
+        parts.append(f"&mesh name = 'ss{i}', x = 0.0, 1.2, nx = {k}, y = 0.0, 1.2, ny = {k}, "
+                     f"z = {z0:.6g}, {z0 + 0.6:.6g}, nz = {half}, block = 'ss' /")
+        parts.append(f"&mesh name = 'al{i}', x = 0.0, 1.2, nx = {k}, y = 0.0, 1.2, ny = {k}, "
+                     f"z = {z0 + 0.6:.6g}, {z0 + 1.2:.6g}, nz = {half}, block = 'al' /")
+    surf_a = ", ".join(f"al{i}_zmin" for i in range(n))
+    surf_b = ", ".join(f"ss{i}_zmax" for i in range(n))
+    nl = "\n"
+    return f"""&control
+  title = 'weak scaling contact, Al on steel, {k}^3 zones per pair, {n} pairs'
+  t_end = {2.0 / k:.6g}
+/
+{nl.join(parts)}
+&material name = 'al', eos = 'mie_gruneisen', library = 'al6061', strength = 'steinberg_guinan' /
+&material name = 'ss', eos = 'mie_gruneisen', library = 'ss304', strength = 'steinberg_guinan' /
+&block name = 'al', material = 'al' /
+&block name = 'ss', material = 'ss' /
+&region block = 'al', density = 2.703, velocity = 0.0, 0.0, -0.01 /
+&region block = 'ss', density = 7.90 /
+&boundary set = 'xmin', type = 'symmetry' /
+&boundary set = 'ymin', type = 'symmetry' /
+&contact name = 'hit', surface_a = '{surf_a}', surface_b = '{surf_b}', method = '{method}' /
+&output
+  status_every = 1000
+{dump}/
+"""

@@ -4,6 +4,12 @@
 impact3d_regress(parallel/weak_memory "regression;parallel"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/weak_memory
   --mpiexec ${MPIEXEC_EXECUTABLE})
+# The Al-on-steel contact pair stacked one pair per rank: the share on 8
+# ranks at most 1.10 times that on 4 (contact surfaces built from each
+# rank's local mesh; check.py derives the bound).
+impact3d_regress(parallel/weak_memory_contact "regression;parallel;contact"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/weak_memory_contact
+  --mpiexec ${MPIEXEC_EXECUTABLE} --problem contact)
 # The same deck on the same rank count gives the same partition every time,
 # with at most 3% imbalance (partition_twice.py).
 impact3d_regress(parallel/partition_reproducible "regression;parallel"
