@@ -9,8 +9,8 @@ module app_setup
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
-  use mesh_curved, only: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, &
-      mesh_make_ball_octant, mesh_make_box_minus_ball
+  use mesh_curved, only: curved_part
+  use mesh_blocks, only: block_part_t, part_assemble, range_add_part, part_set_counts
   use mesh_local, only: mesh_t
   use mesh_range, only: mesh_range_t, range_init, range_add_box, range_add_global, &
       range_set_index, box_sizes, box_set_counts
@@ -34,6 +34,11 @@ module app_setup
   implicit none
   private
   public :: setup_run, setup_mesh, setup_state, assign_blocks
+
+  !> A curved part of a deck (the array of them is one per &mesh part).
+  type :: block_part_holder_t
+    class(block_part_t), allocatable :: part
+  end type block_part_holder_t
 
 contains
 
@@ -187,8 +192,8 @@ contains
   end subroutine assign_blocks_by_name
 
   !> Build this rank's mesh: every &mesh part in deck order, each rank
-  !> generating only its contiguous range of the global zone ids (box parts
-  !> zone by zone; curved and imported parts are still built whole on every
+  !> generating only its contiguous range of the global zone ids (box and
+  !> curved parts zone by zone; imported parts are still read whole on every
   !> rank and cut to the range), blocks, the parallel partition and the
   !> distribution (mesh_distribute), the boundaries and the contact surfaces'
   !> names. coordinates are the local nodes' initial positions. With whole,
@@ -207,6 +212,7 @@ contains
     logical, intent(in), optional :: whole
     character(len=NAME_LEN), allocatable :: group_names(:)
     type(global_mesh_t), allocatable :: pieces(:)
+    type(block_part_holder_t), allocatable :: curved(:)
     type(mesh_range_t) :: range
     type(distribute_stats_t) :: stats
     integer :: k, n, b, nx, ny, nz, lo, hi, z, f, m
@@ -216,7 +222,7 @@ contains
     character(len=16) :: where
     character(len=200), allocatable :: lines(:)
     character(len=:), allocatable :: imported
-    logical :: claimed(size(config%blocks)), need_global, is_box
+    logical :: claimed(size(config%blocks)), need_global, is_box, is_curved
     integer :: part_block(size(config%parts))
 
     claimed = .false.
@@ -226,9 +232,9 @@ contains
     call global%free()
     allocate(global%coordinates(3, 0), global%connectivity(8, 0), global%zone_block(0))
     call timers%start('mesh generate')
-    ! Parts other than boxes are built whole (with their blocks, rotation and
-    ! offset); boxes only counted.
-    allocate(pieces(size(config%parts)))
+    ! Imported parts are read whole (with their blocks, rotation and offset);
+    ! boxes and curved parts only counted (built whole too for tests, whole).
+    allocate(pieces(size(config%parts)), curved(size(config%parts)))
     nzone = 0
     nnode = 0
     part_block = 0
@@ -247,17 +253,17 @@ contains
           end if
         end if
         is_box = .false.
+        is_curved = .false.
         select case (spec%mesh_type)
-        case ('rod')
-          call mesh_make_rod(spec%rod, piece, status)
-        case ('tube')
-          call mesh_make_tube(spec%tube, piece, status)
-        case ('shell')
-          call mesh_make_shell_octant(spec%shell, piece, status)
-        case ('ball')
-          call mesh_make_ball_octant(spec%ball, piece, status)
-        case ('box_minus_ball')
-          call mesh_make_box_minus_ball(spec%box_minus_ball, piece, status)
+        case ('rod', 'tube', 'shell', 'ball', 'box_minus_ball')
+          is_curved = .true.
+          call curved_part(spec%mesh_type, spec%rod, spec%tube, spec%shell, spec%ball, &
+              spec%box_minus_ball, curved(k)%part, status)
+          if (status%ok()) then
+            nzone = nzone + curved(k)%part%nzone
+            nnode = nnode + curved(k)%part%nnode
+            if (need_global) call part_assemble(curved(k)%part, piece)
+          end if
         case ('gmsh', 'exodus')
           call mesh_import_file(spec%mesh_type, spec%mesh_path, piece, group_names, status)
           if (status%ok() .and. par_rank() == 0) then
@@ -277,7 +283,7 @@ contains
           if (need_global) call mesh_make_box(spec%box, piece, status)
         end select
         if (.not. status%ok()) return
-        if (.not. is_box) then
+        if (.not. (is_box .or. is_curved)) then
           nzone = nzone + piece%nzone
           nnode = nnode + piece%nnode
         end if
@@ -314,7 +320,17 @@ contains
     do k = 1, size(config%parts)
       associate(spec => config%parts(k), piece => pieces(k))
         is_box = spec%mesh_type == 'box'
-        if (is_box) then
+        if (allocated(curved(k)%part)) then
+          counts = part_set_counts(curved(k)%part)
+          allocate(sets(2, size(counts)), ord0(2, size(counts)))
+          call map_sets(curved(k)%part%set_names)
+          call range_add_part(range, curved(k)%part, zone0, node0, sets, ord0, lo, hi)
+          call place(lo, hi)
+          if (hi >= lo) range%zone_block(lo:hi) = part_block(k)
+          zone0 = zone0 + curved(k)%part%nzone
+          node0 = node0 + curved(k)%part%nnode
+          deallocate(curved(k)%part)
+        else if (is_box) then
           call box_sizes(spec%box, nx, ny, nz)
           allocate(counts(6))
           counts = box_set_counts(nx, ny, nz)
@@ -322,13 +338,7 @@ contains
           call map_sets([character(len=NAME_LEN) :: 'xmin', 'xmax', 'ymin', 'ymax', &
               'zmin', 'zmax'])
           call range_add_box(range, spec%box, zone0, node0, sets, ord0, lo, hi)
-          do z = lo, hi
-            if (spec%rotation_angle /= 0.0_rk) call rotate(range%corner_x(:, :, z), &
-                spec%rotation_axis, spec%rotation_angle)
-            do f = 1, 8
-              range%corner_x(:, f, z) = range%corner_x(:, f, z) + spec%offset
-            end do
-          end do
+          call place(lo, hi)
           if (hi >= lo) range%zone_block(lo:hi) = part_block(k)
           zone0 = zone0 + int(nx, i8) * ny * nz
           node0 = node0 + int(nx + 1, i8) * (ny + 1) * (nz + 1)
@@ -372,6 +382,19 @@ contains
     call check_contacts(config, mesh, status)
 
   contains
+
+    !> The part's rotation and offset on the range's zones lo..hi.
+    subroutine place(lo, hi)
+      integer, intent(in) :: lo, hi
+      integer :: zz, c
+      do zz = lo, hi
+        if (config%parts(k)%rotation_angle /= 0.0_rk) call rotate(range%corner_x(:, :, zz), &
+            config%parts(k)%rotation_axis, config%parts(k)%rotation_angle)
+        do c = 1, 8
+          range%corner_x(:, c, zz) = range%corner_x(:, c, zz) + config%parts(k)%offset
+        end do
+      end do
+    end subroutine place
 
     !> sets/ord0 of the part's sets called names: the range's plain-name set
     !> and, with a part name, the prefixed set; the faces before this part.

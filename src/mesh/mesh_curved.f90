@@ -3,34 +3,34 @@
 !> (cube core and three patches out to the sphere) and the octant of a box
 !> minus a ball (three patches from the sphere out to the box faces).
 !>
-!> Each body is assembled from structured blocks (logical i, j, k). A block
-!> whose first hex comes out left-handed is mirrored in i, so every hex has the
-!> positive (VTK) node order. Nodes that blocks share are merged by position
-!> (within 1e-10 of the body size; shared nodes are computed by the same
-!> formulas, so they agree to round-off). Nodes are numbered in order of first
-!> appearance and zones block by block, i fastest. Nodes on a circle or sphere
-!> are computed as radius times a unit direction, and nodes on a symmetry
-!> plane have that coordinate exactly zero. zone_block is left 0: the caller
-!> assigns blocks.
+!> Each body is a part of structured blocks (logical i, j, k; mesh_blocks):
+!> each block's node positions come from a point function, so a rank builds
+!> only the zones of its range (range_add_part), and the whole body is built
+!> only for tests (mesh_make_*). Nodes that blocks share are merged by
+!> position (within 1e-10 of the body size; shared nodes are computed by the
+!> same formulas, so they agree to round-off); nodes are numbered in order of
+!> first appearance and zones block by block, i fastest. Nodes on a circle or
+!> sphere are computed as radius times a unit direction, and nodes on a
+!> symmetry plane have that coordinate exactly zero. Balls and shells come
+!> as an octant, a quarter (x, y >= 0), a half (y >= 0) or a whole sphere:
+!> the octant and its mirror images, the octant first (so it keeps its
+!> numbering). zone_block is left 0: the caller assigns blocks.
 module mesh_curved
   use core_kinds, only: rk, ik
   use core_status, only: status_t
-  use core_sort, only: sort_order
   use core_text, only: real_text => to_text, int_text => to_text
-  use mesh_geometry, only: hex_volume
+  use mesh_blocks, only: block_part_t, part_prepare, part_assemble
   use mesh_global, only: global_mesh_t, interval_points, NAME_LEN
   implicit none
   private
   public :: rod_spec_t, tube_spec_t, shell_spec_t, ball_spec_t, box_minus_ball_spec_t
-  public :: mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, mesh_make_ball_octant
-  public :: mesh_make_box_minus_ball
+  public :: mesh_make_rod, mesh_make_tube, mesh_make_shell, mesh_make_ball
+  public :: mesh_make_box_minus_ball, curved_part, sector_known
 
   real(rk), parameter :: PI = acos(-1.0_rk)
   !> Angle between a bulged core edge and the straight one at the core corner:
   !> 15 degrees makes all three zones meeting at that corner 120 degrees wide.
   real(rk), parameter :: CORE_BULGE = PI / 12.0_rk
-  !> Nodes closer than this fraction of the body size are one node.
-  real(rk), parameter :: MERGE_TOLERANCE = 1.0e-10_rk
   !> Largest accepted |(|axis| - 1)|.
   real(rk), parameter :: UNIT_TOLERANCE = 1.0e-6_rk
 
@@ -66,24 +66,28 @@ module mesh_curved
     real(rk) :: radial_reference(3) = 0.0_rk
   end type tube_spec_t
 
-  !> Spherical shell octant (x, y, z >= 0) between ri and ro, centred at 0.
+  !> Spherical shell between ri and ro, centred at 0: the octant (x, y, z >=
+  !> 0), a quarter (x, y >= 0), a half (y >= 0) or the whole ('full').
   type :: shell_spec_t
     real(rk) :: ri = 8.0_rk !< inner radius
     real(rk) :: ro = 10.0_rk !< outer radius
     integer :: n_patch = 10 !< zones along each edge of the three surface patches
     integer :: n_radial = 8 !< zones from ri to ro
     real(rk) :: radial_ratio = 1.0_rk !< last/first zone thickness (outward)
+    character(len=16) :: sector = 'octant' !< 'octant', 'quarter', 'half' or 'full'
   end type shell_spec_t
 
-  !> Ball octant (x, y, z >= 0) of radius R centred at 0: a cube core
-  !> [0, a]^3 and three patches, each joining one outer core face to the
-  !> sphere by straight lines (the 3D analogue of the rod's O-grid).
+  !> Ball of radius R centred at 0, octant (x, y, z >= 0), quarter (x, y >=
+  !> 0), half (y >= 0) or whole ('full'). The octant is a cube core [0, a]^3
+  !> and three patches, each joining one outer core face to the sphere by
+  !> straight lines (the 3D analogue of the rod's O-grid).
   type :: ball_spec_t
     real(rk) :: radius = 0.5_rk !< R
     integer :: n_core = 8 !< zones along each core edge (and each patch edge on the sphere)
     integer :: n_radial = 6 !< zones from the core face to the sphere
     real(rk) :: radial_ratio = 1.0_rk !< last/first zone thickness (outward)
     real(rk) :: core_fraction = 0.45_rk !< a = f R, 0.2 <= f <= 0.5
+    character(len=16) :: sector = 'octant' !< 'octant', 'quarter', 'half' or 'full'
   end type ball_spec_t
 
   !> Octant of the box [0, L]^3 minus the ball r < R (R < L): three patches,
@@ -97,32 +101,235 @@ module mesh_curved
     real(rk) :: radial_ratio = 1.0_rk !< last/first zone length along a ray (outward)
   end type box_minus_ball_spec_t
 
-  !> One structured block of n(1) x n(2) x n(3) hexes.
-  type :: block_t
-    integer :: n(3) = 0 !< zones in i, j, k
-    real(rk), allocatable :: x(:, :, :, :) !< (3, 0:n1, 0:n2, 0:n3) node coordinates
-    !> Set index of each block face (mesh_geometry face order: k-, k+, j-, i+,
-    !> j+, i-), 0 for faces glued to another block.
-    integer :: face_set(6) = 0
-  end type block_t
+  !> The generators as parts of blocks (mesh_blocks), with what their point
+  !> functions need.
+  type, extends(block_part_t) :: rod_part_t
+    integer :: nc = 0, nr = 0
+    real(rk) :: radius = 0.0_rk, a = 0.0_rk, rho = 0.0_rk, xc = 0.0_rk, b = 0.0_rk
+    real(rk), allocatable :: z(:) !< (0:n_axial)
+  contains
+    procedure :: raw_point => rod_point
+  end type rod_part_t
+
+  type, extends(block_part_t) :: tube_part_t
+    integer :: n_theta = 0, quarters = 0
+    real(rk) :: e1(3) = 0.0_rk, e2(3) = 0.0_rk, axis(3) = 0.0_rk, origin(3) = 0.0_rk
+    real(rk), allocatable :: r(:), z(:) !< (0:n_radial), (0:n_axial)
+  contains
+    procedure :: raw_point => tube_point
+  end type tube_part_t
+
+  type, extends(block_part_t) :: shell_part_t
+    real(rk), allocatable :: r(:), t(:) !< (0:n_radial), (0:n_patch)
+    real(rk), allocatable :: signs(:, :) !< (3, copies) each octant copy's signs
+  contains
+    procedure :: raw_point => shell_point
+  end type shell_part_t
+
+  type, extends(block_part_t) :: ball_part_t
+    integer :: nr = 0
+    real(rk) :: radius = 0.0_rk, a = 0.0_rk
+    real(rk), allocatable :: s(:), t(:), cc(:) !< (0:n_radial), (0:n_core), (0:n_core)
+    real(rk), allocatable :: signs(:, :) !< (3, copies)
+  contains
+    procedure :: raw_point => ball_point
+  end type ball_part_t
+
+  type, extends(block_part_t) :: box_minus_ball_part_t
+    integer :: nr = 0
+    real(rk) :: radius = 0.0_rk, length = 0.0_rk
+    real(rk), allocatable :: s(:), t(:) !< (0:n_radial), (0:n_patch)
+  contains
+    procedure :: raw_point => box_minus_ball_point
+  end type box_minus_ball_part_t
 
 contains
+
+  ! ------------------------------------------------------------ point functions
+
+  !> Rod: block 3 q + 1 the core of quarter q (i along x, j along y), 3 q + 2
+  !> the ring below the diagonal (i radial, core to circle; j counter-
+  !> clockwise), 3 q + 3 its mirror image in x = y.
+  pure function rod_point(this, b, i, j, k) result(x)
+    class(rod_part_t), intent(in) :: this
+    integer, intent(in) :: b, i, j, k
+    real(rk) :: x(3), p(2), u, v
+    integer :: q
+    q = (b - 1) / 3
+    v = real(j, rk) / real(this%nc, rk)
+    select case (mod(b - 1, 3))
+    case (0)
+      u = real(i, rk) / real(this%nc, rk)
+      p = rotate_quarters(rod_core_point(this, u, v), q)
+      x = [p, this%z(k)]
+    case (1)
+      u = real(i, rk) / real(this%nr, rk)
+      p = rod_ring_point(this, u, v)
+      x = [rotate_quarters(p, q), this%z(k)]
+    case default
+      u = real(i, rk) / real(this%nr, rk)
+      p = rod_ring_point(this, u, v)
+      x = [rotate_quarters([p(2), p(1)], q), this%z(k)]
+    end select
+  end function rod_point
+
+  !> Point s (0..1) of the rod's bulged core edge, from (b, 0) to (a, a).
+  pure function rod_core_edge(this, s) result(pt)
+    type(rod_part_t), intent(in) :: this
+    real(rk), intent(in) :: s
+    real(rk) :: pt(2)
+    pt = [this%xc + this%rho * cos(s * CORE_BULGE), this%rho * sin(s * CORE_BULGE)]
+  end function rod_core_edge
+
+  !> Rod core point (u, v) in [0,1]^2: transfinite (Coons) interpolation of
+  !> the straight edges on the axes and the two bulged edges.
+  pure function rod_core_point(this, uu, vv) result(pt)
+    type(rod_part_t), intent(in) :: this
+    real(rk), intent(in) :: uu, vv
+    real(rk) :: pt(2), right(2), upper(2)
+    right = rod_core_edge(this, vv)
+    upper = rod_core_edge(this, uu)
+    upper = [upper(2), upper(1)]
+    pt = (1.0_rk - vv) * [uu * this%b, 0.0_rk] + vv * upper + (1.0_rk - uu) * &
+        [0.0_rk, vv * this%b] + uu * right - (uu * (1.0_rk - vv) * [this%b, 0.0_rk] + &
+        (1.0_rk - uu) * vv * [0.0_rk, this%b] + uu * vv * [this%a, this%a])
+  end function rod_core_point
+
+  !> Rod ring point: fraction t of the straight way from the core edge point
+  !> s to the circle at angle s pi/4 (t = 1 gives the circle point exactly).
+  pure function rod_ring_point(this, t, s) result(pt)
+    type(rod_part_t), intent(in) :: this
+    real(rk), intent(in) :: t, s
+    real(rk) :: pt(2)
+    pt = (1.0_rk - t) * rod_core_edge(this, s) + t * (this%radius * [cos(s * 0.25_rk * PI), &
+        sin(s * 0.25_rk * PI)])
+  end function rod_ring_point
+
+  !> Tube: one block (b = 1), i radial, j around, k along the axis.
+  pure function tube_point(this, b, i, j, k) result(x)
+    class(tube_part_t), intent(in) :: this
+    integer, intent(in) :: b, i, j, k
+    real(rk) :: x(3), c(2)
+    c = circle_point(j, this%n_theta, this%quarters)
+    x = this%origin + (this%r(i) * c(1)) * this%e1 + (this%r(i) * c(2)) * this%e2 &
+        + this%z(k) * this%axis
+  end function tube_point
+
+  !> Shell: octant copy c = (b - 1) / 3 + 1, patch mod(b - 1, 3) + 1 (i, j
+  !> the patch angles, k radial), mirrored by the copy's signs.
+  pure function shell_point(this, b, i, j, k) result(x)
+    class(shell_part_t), intent(in) :: this
+    integer, intent(in) :: b, i, j, k
+    real(rk) :: x(3), d(3, 3)
+    integer :: patch
+    patch = mod(b - 1, 3) + 1
+    d = patch_directions(this%t(i), this%t(j))
+    d(:, patch) = d(:, patch) / sqrt(sum(d(:, patch)**2))
+    x = this%r(k) * d(:, patch)
+    x = x * this%signs(:, (b - 1) / 3 + 1)
+  end function shell_point
+
+  !> Ball: octant copy c = (b - 1) / 4 + 1; block mod(b - 1, 4) + 1 is the
+  !> core (1) or the patch on the core face x = a (2), y = a (3), z = a (4),
+  !> i, j across the core face and k from it to the sphere.
+  pure function ball_point(this, b, i, j, k) result(x)
+    class(ball_part_t), intent(in) :: this
+    integer, intent(in) :: b, i, j, k
+    real(rk) :: x(3), d(3, 3), core(3, 3), across, a
+    integer :: patch
+    a = this%a
+    patch = mod(b - 1, 4)
+    if (patch == 0) then
+      x = a * [this%cc(i), this%cc(j), this%cc(k)]
+    else
+      d = patch_directions(this%t(i), this%t(j))
+      across = a * this%cc(i)
+      core(:, 1) = [a, across, a * this%cc(j)]
+      core(:, 2) = [across, a, a * this%cc(j)]
+      core(:, 3) = [across, a * this%cc(j), a]
+      d(:, patch) = this%radius * d(:, patch) / sqrt(sum(d(:, patch)**2))
+      if (k == this%nr) then
+        ! The sphere node exactly radius times the unit direction.
+        x = d(:, patch)
+      else
+        x = (1.0_rk - this%s(k)) * core(:, patch) + this%s(k) * d(:, patch)
+      end if
+    end if
+    x = x * this%signs(:, (b - 1) / 4 + 1)
+  end function ball_point
+
+  !> Box minus ball: patch b (i, j the patch angles, k along the ray from
+  !> the sphere to the box face).
+  pure function box_minus_ball_point(this, b, i, j, k) result(x)
+    class(box_minus_ball_part_t), intent(in) :: this
+    integer, intent(in) :: b, i, j, k
+    real(rk) :: x(3), d(3, 3), sphere(3)
+    d = patch_directions(this%t(i), this%t(j))
+    sphere = this%radius * d(:, b) / sqrt(sum(d(:, b)**2))
+    if (k == 0) then
+      x = sphere
+    else if (k == this%nr) then
+      x = this%length * d(:, b)
+    else
+      x = (1.0_rk - this%s(k)) * sphere + this%s(k) * this%length * d(:, b)
+    end if
+  end function box_minus_ball_point
+
+  ! ------------------------------------------------------------- the parts
+
+  !> A part's blocks: n zones and face sets of each.
+  subroutine set_blocks(part, n, face_set, names, length_scale)
+    class(block_part_t), intent(inout) :: part
+    integer, intent(in) :: n(:, :), face_set(:, :)
+    character(len=*), intent(in) :: names(:)
+    real(rk), intent(in) :: length_scale
+    part%nblock = size(n, 2)
+    part%n = n
+    part%face_set = face_set
+    allocate(part%set_names(size(names)))
+    part%set_names = names
+    part%length_scale = length_scale
+  end subroutine set_blocks
+
+  !> The generator of a deck's curved part as blocks, numbered
+  !> (part_prepare); problems go to status and leave part unallocated.
+  subroutine curved_part(kind, rod, tube, shell, ball, box_minus_ball, part, status)
+    character(len=*), intent(in) :: kind !< 'rod', 'tube', 'shell', 'ball', 'box_minus_ball'
+    type(rod_spec_t), intent(in) :: rod
+    type(tube_spec_t), intent(in) :: tube
+    type(shell_spec_t), intent(in) :: shell
+    type(ball_spec_t), intent(in) :: ball
+    type(box_minus_ball_spec_t), intent(in) :: box_minus_ball
+    class(block_part_t), allocatable, intent(out) :: part
+    type(status_t), intent(inout) :: status
+    select case (kind)
+    case ('rod')
+      call rod_part(rod, part, status)
+    case ('tube')
+      call tube_part(tube, part, status)
+    case ('shell')
+      call shell_part(shell, part, status)
+    case ('ball')
+      call ball_part(ball, part, status)
+    case default
+      call box_minus_ball_part(box_minus_ball, part, status)
+    end select
+    if (allocated(part)) call part_prepare(part)
+  end subroutine curved_part
 
   !> Solid rod along z. Quarter: one core block and two ring blocks (the ring
   !> split on the 45 degree diagonal); full: the quarter rotated four times.
   !> Sets: side, bottom, top (+ xsym, ysym for the quarter).
-  subroutine mesh_make_rod(spec, mesh, status)
+  subroutine rod_part(spec, part, status)
     type(rod_spec_t), intent(in) :: spec
-    type(global_mesh_t), intent(inout) :: mesh
+    class(block_part_t), allocatable, intent(out) :: part
     type(status_t), intent(inout) :: status
     integer, parameter :: SIDE = 1, BOTTOM = 2, TOP = 3, XSYM = 4, YSYM = 5
-    type(block_t), allocatable :: blocks(:)
-    real(rk), allocatable :: z(:)
-    real(rk) :: a, rho, xc, b, p(2), u, v
-    integer :: nerr, nq, q, nc, nr, nz, i, j, k, xset, yset
+    type(rod_part_t), allocatable :: rod
+    integer, allocatable :: n(:, :), face_set(:, :)
+    integer :: nerr, nq, q, nc, nr, nz, xset, yset
     logical :: full
 
-    call mesh%free()
     nerr = status%count
     call require(status, spec%radius > 0.0_rk, 'rod: radius must be > 0 (got ' // &
         real_text(spec%radius) // ')')
@@ -139,17 +346,21 @@ contains
         'rod: core_fraction must be in [0.3, 0.65] (got ' // real_text(spec%core_fraction) // ')')
     if (status%count > nerr) return
 
+    allocate(rod)
     full = spec%sector == 'full'
     nc = spec%n_core
     nr = spec%n_radial
     nz = spec%n_axial
-    call interval_points(1, [spec%z0, spec%z0 + spec%length], [nz], [spec%axial_ratio], z)
+    rod%nc = nc
+    rod%nr = nr
+    rod%radius = spec%radius
+    call interval_points(1, [spec%z0, spec%z0 + spec%length], [nz], [spec%axial_ratio], rod%z)
     ! Core edge x = a bulged into an arc of radius rho centred at (xc, 0): from
     ! (b, 0) on the x axis to the core corner (a, a).
-    a = spec%core_fraction * spec%radius
-    rho = a / sin(CORE_BULGE)
-    xc = a - rho * cos(CORE_BULGE)
-    b = xc + rho
+    rod%a = spec%core_fraction * spec%radius
+    rod%rho = rod%a / sin(CORE_BULGE)
+    rod%xc = rod%a - rod%rho * cos(CORE_BULGE)
+    rod%b = rod%xc + rod%rho
     xset = XSYM
     yset = YSYM
     nq = 1
@@ -158,90 +369,39 @@ contains
       yset = 0
       nq = 4
     end if
-    allocate(blocks(3 * nq))
+    allocate(n(3, 3 * nq), face_set(6, 3 * nq))
     do q = 0, nq - 1
-      ! Core: i along x, j along y.
-      call block_new(blocks(3 * q + 1), nc, nc, nz, [BOTTOM, TOP, yset, 0, 0, xset])
-      ! Ring below the diagonal: i radial (core to circle), j counter-clockwise.
-      call block_new(blocks(3 * q + 2), nr, nc, nz, [BOTTOM, TOP, yset, SIDE, 0, 0])
-      ! Ring above the diagonal: the mirror image of the one below in x = y.
-      call block_new(blocks(3 * q + 3), nr, nc, nz, [BOTTOM, TOP, xset, SIDE, 0, 0])
-      do j = 0, nc
-        v = real(j, rk) / real(nc, rk)
-        do i = 0, nc
-          u = real(i, rk) / real(nc, rk)
-          p = rotate_quarters(core_point(u, v), q)
-          do k = 0, nz
-            blocks(3 * q + 1)%x(:, i, j, k) = [p, z(k)]
-          end do
-        end do
-        do i = 0, nr
-          u = real(i, rk) / real(nr, rk)
-          p = ring_point(u, v)
-          do k = 0, nz
-            blocks(3 * q + 2)%x(:, i, j, k) = [rotate_quarters(p, q), z(k)]
-            blocks(3 * q + 3)%x(:, i, j, k) = [rotate_quarters([p(2), p(1)], q), z(k)]
-          end do
-        end do
-      end do
+      n(:, 3 * q + 1) = [nc, nc, nz]
+      face_set(:, 3 * q + 1) = [BOTTOM, TOP, yset, 0, 0, xset]
+      n(:, 3 * q + 2) = [nr, nc, nz]
+      face_set(:, 3 * q + 2) = [BOTTOM, TOP, yset, SIDE, 0, 0]
+      n(:, 3 * q + 3) = [nr, nc, nz]
+      face_set(:, 3 * q + 3) = [BOTTOM, TOP, xset, SIDE, 0, 0]
     end do
     if (full) then
-      call assemble(blocks, [character(len=NAME_LEN) :: 'side', 'bottom', 'top'], &
-          max(spec%radius, spec%length), mesh)
+      call set_blocks(rod, n, face_set, [character(len=NAME_LEN) :: 'side', 'bottom', 'top'], &
+          max(spec%radius, spec%length))
     else
-      call assemble(blocks, [character(len=NAME_LEN) :: 'side', 'bottom', 'top', 'xsym', &
-          'ysym'], max(spec%radius, spec%length), mesh)
+      call set_blocks(rod, n, face_set, [character(len=NAME_LEN) :: 'side', 'bottom', 'top', &
+          'xsym', 'ysym'], max(spec%radius, spec%length))
     end if
-
-  contains
-
-    !> Point s (0..1) of the bulged core edge, from (b, 0) to (a, a).
-    pure function core_edge(s) result(pt)
-      real(rk), intent(in) :: s
-      real(rk) :: pt(2)
-      pt = [xc + rho * cos(s * CORE_BULGE), rho * sin(s * CORE_BULGE)]
-    end function core_edge
-
-    !> Core point (u, v) in [0,1]^2: transfinite (Coons) interpolation of the
-    !> straight edges on the axes and the two bulged edges.
-    pure function core_point(uu, vv) result(pt)
-      real(rk), intent(in) :: uu, vv
-      real(rk) :: pt(2), right(2), upper(2)
-      right = core_edge(vv)
-      upper = core_edge(uu)
-      upper = [upper(2), upper(1)]
-      pt = (1.0_rk - vv) * [uu * b, 0.0_rk] + vv * upper + (1.0_rk - uu) * [0.0_rk, vv * b] &
-          + uu * right - (uu * (1.0_rk - vv) * [b, 0.0_rk] + (1.0_rk - uu) * vv * [0.0_rk, b] &
-          + uu * vv * [a, a])
-    end function core_point
-
-    !> Ring point: fraction t of the straight way from the core edge point s to
-    !> the circle at angle s pi/4 (t = 1 gives the circle point exactly).
-    pure function ring_point(t, s) result(pt)
-      real(rk), intent(in) :: t, s
-      real(rk) :: pt(2)
-      pt = (1.0_rk - t) * core_edge(s) + t * (spec%radius * [cos(s * 0.25_rk * PI), &
-          sin(s * 0.25_rk * PI)])
-    end function ring_point
-
-  end subroutine mesh_make_rod
+    call move_alloc(rod, part)
+  end subroutine rod_part
 
   !> Thick tube: one block, i radial, j around, k along the axis; a full tube
   !> closes on itself at theta = 0. Sets: inner, outer, bottom, top, and the
   !> cut planes (half: ysym for both cuts; quarter: ysym at theta = 0 and xsym
   !> at theta = 90 degrees; local axes, i.e. the global x, y planes by default).
-  subroutine mesh_make_tube(spec, mesh, status)
+  subroutine tube_part(spec, part, status)
     type(tube_spec_t), intent(in) :: spec
-    type(global_mesh_t), intent(inout) :: mesh
+    class(block_part_t), allocatable, intent(out) :: part
     type(status_t), intent(inout) :: status
     integer, parameter :: INNER = 1, OUTER = 2, BOTTOM = 3, TOP = 4
-    type(block_t) :: blocks(1)
-    real(rk), allocatable :: r(:), z(:)
-    real(rk) :: axis(3), e1(3), e2(3), c(2), length_axis, projected
-    integer :: nerr, quarters, min_theta, i, j, k, start_set, end_set
+    type(tube_part_t), allocatable :: tube
+    real(rk) :: axis(3), e1(3), length_axis, projected
+    integer :: nerr, quarters, min_theta, start_set, end_set
     character(len=NAME_LEN), allocatable :: names(:)
 
-    call mesh%free()
     nerr = status%count
     call require(status, spec%ri > 0.0_rk, 'tube: ri must be > 0 (got ' // &
         real_text(spec%ri) // ')')
@@ -281,6 +441,7 @@ contains
     end if
     if (status%count > nerr) return
 
+    allocate(tube)
     ! Right-handed frame (e1, e2, axis).
     axis = spec%axis / length_axis
     if (all(spec%radial_reference == 0.0_rk)) then
@@ -291,7 +452,12 @@ contains
     end if
     e1 = e1 - dot_product(e1, axis) * axis
     e1 = e1 / norm2(e1)
-    e2 = cross(axis, e1)
+    tube%e1 = e1
+    tube%e2 = cross(axis, e1)
+    tube%axis = axis
+    tube%origin = spec%origin
+    tube%quarters = quarters
+    tube%n_theta = spec%n_theta
 
     start_set = 0
     end_set = 0
@@ -310,36 +476,98 @@ contains
       end_set = 5
     end select
     names(1:4) = [character(len=NAME_LEN) :: 'inner', 'outer', 'bottom', 'top']
-    call interval_points(1, [spec%ri, spec%ro], [spec%n_radial], [1.0_rk], r)
-    call interval_points(1, [0.0_rk, spec%length], [spec%n_axial], [spec%axial_ratio], z)
-    call block_new(blocks(1), spec%n_radial, spec%n_theta, spec%n_axial, &
-        [BOTTOM, TOP, start_set, OUTER, end_set, INNER])
-    do j = 0, spec%n_theta
-      c = circle_point(j, spec%n_theta, quarters)
-      do k = 0, spec%n_axial
-        do i = 0, spec%n_radial
-          blocks(1)%x(:, i, j, k) = spec%origin + (r(i) * c(1)) * e1 + (r(i) * c(2)) * e2 &
-              + z(k) * axis
-        end do
+    call interval_points(1, [spec%ri, spec%ro], [spec%n_radial], [1.0_rk], tube%r)
+    call interval_points(1, [0.0_rk, spec%length], [spec%n_axial], [spec%axial_ratio], tube%z)
+    call set_blocks(tube, reshape([spec%n_radial, spec%n_theta, spec%n_axial], [3, 1]), &
+        reshape([BOTTOM, TOP, start_set, OUTER, end_set, INNER], [6, 1]), names, &
+        max(spec%ro, spec%length, maxval(abs(spec%origin))))
+    call move_alloc(tube, part)
+  end subroutine tube_part
+
+  !> The octant copies of a sphere sector ('octant': x, y, z >= 0;
+  !> 'quarter': x, y >= 0; 'half': y >= 0; 'full'), each as the signs of
+  !> its coordinates, the octant first; keep(a): the plane normal to axis a
+  !> stays a boundary (no copy across it).
+  subroutine sector_signs(sector, signs, keep)
+    character(len=*), intent(in) :: sector
+    real(rk), allocatable, intent(out) :: signs(:, :)
+    logical, intent(out) :: keep(3)
+    real(rk), parameter :: P = 1.0_rk, M = -1.0_rk
+    select case (sector)
+    case ('quarter')
+      signs = reshape([P, P, P, P, P, M], [3, 2])
+      keep = [.true., .true., .false.]
+    case ('half')
+      signs = reshape([P, P, P, P, P, M, M, P, P, M, P, M], [3, 4])
+      keep = [.false., .true., .false.]
+    case ('full')
+      signs = reshape([P, P, P, P, P, M, M, P, P, M, P, M, P, M, P, P, M, M, M, M, P, &
+          M, M, M], [3, 8])
+      keep = .false.
+    case default
+      signs = reshape([P, P, P], [3, 1])
+      keep = .true.
+    end select
+  end subroutine sector_signs
+
+  !> Whether a sector name is known ('octant', 'quarter', 'half', 'full').
+  pure logical function sector_known(sector)
+    character(len=*), intent(in) :: sector
+    sector_known = sector == 'octant' .or. sector == 'quarter' .or. sector == 'half' .or. &
+        sector == 'full'
+  end function sector_known
+
+  !> The octant's blocks repeated for each copy of the sector, with the
+  !> sets of planes that copies join removed; planes(a): the octant's set
+  !> on the plane normal to axis a. names: the octant's set names, those
+  !> kept come out in their order.
+  subroutine sector_blocks(n8, sets8, names8, planes, sector, n, face_set, names, signs)
+    integer, intent(in) :: n8(:, :), sets8(:, :) !< the octant's blocks
+    character(len=*), intent(in) :: names8(:)
+    integer, intent(in) :: planes(3)
+    character(len=*), intent(in) :: sector
+    integer, allocatable, intent(out) :: n(:, :), face_set(:, :)
+    character(len=NAME_LEN), allocatable, intent(out) :: names(:)
+    real(rk), allocatable, intent(out) :: signs(:, :)
+    logical :: keep(3), kept(size(names8))
+    integer :: map(0:size(names8)), c, b, s, a, nb
+    call sector_signs(sector, signs, keep)
+    kept = .true.
+    do a = 1, 3
+      if (.not. keep(a)) kept(planes(a)) = .false.
+    end do
+    map = 0
+    allocate(names(0))
+    do s = 1, size(names8)
+      if (.not. kept(s)) cycle
+      names = [character(len=NAME_LEN) :: names, names8(s)]
+      map(s) = size(names)
+    end do
+    nb = size(n8, 2)
+    allocate(n(3, nb * size(signs, 2)), face_set(6, nb * size(signs, 2)))
+    do c = 1, size(signs, 2)
+      do b = 1, nb
+        n(:, (c - 1) * nb + b) = n8(:, b)
+        face_set(:, (c - 1) * nb + b) = map(sets8(:, b))
       end do
     end do
-    call assemble(blocks, names, max(spec%ro, spec%length, maxval(abs(spec%origin))), mesh)
-  end subroutine mesh_make_tube
+  end subroutine sector_blocks
 
-  !> Spherical shell octant: three cubed-sphere patches (equiangular gnomonic,
-  !> one around each axis) meeting at the (1,1,1) direction; i, j the two
-  !> patch angles, k radial. Sets: inner, outer, xsym, ysym, zsym.
-  subroutine mesh_make_shell_octant(spec, mesh, status)
+  !> Spherical shell: the octant's three cubed-sphere patches (equiangular
+  !> gnomonic, one around each axis) meeting at the (1,1,1) direction; i, j
+  !> the two patch angles, k radial; the other octants of the sector are its
+  !> mirror images. Sets: inner, outer, and xsym, ysym, zsym where the sector
+  !> ends on that plane.
+  subroutine shell_part(spec, part, status)
     type(shell_spec_t), intent(in) :: spec
-    type(global_mesh_t), intent(inout) :: mesh
+    class(block_part_t), allocatable, intent(out) :: part
     type(status_t), intent(inout) :: status
     integer, parameter :: INNER = 1, OUTER = 2, XSYM = 3, YSYM = 4, ZSYM = 5
-    type(block_t) :: blocks(3)
-    real(rk), allocatable :: r(:), t(:)
-    real(rk) :: d(3, 3)
-    integer :: nerr, np, nr, i, j, k, patch
+    type(shell_part_t), allocatable :: shell
+    integer, allocatable :: n(:, :), face_set(:, :)
+    character(len=NAME_LEN), allocatable :: names(:)
+    integer :: nerr, np, nr
 
-    call mesh%free()
     nerr = status%count
     call require(status, spec%ri > 0.0_rk, 'shell: ri must be > 0 (got ' // &
         real_text(spec%ri) // ')')
@@ -349,50 +577,43 @@ contains
     call require_count(status, 'shell: n_radial', spec%n_radial, 1)
     call require(status, spec%radial_ratio > 0.0_rk, 'shell: radial_ratio must be > 0 (got ' &
         // real_text(spec%radial_ratio) // ')')
+    call require(status, sector_known(spec%sector), "shell: sector must be 'octant', " // &
+        "'quarter', 'half' or 'full' (got '" // trim(spec%sector) // "')")
     if (status%count > nerr) return
 
+    allocate(shell)
     np = spec%n_patch
     nr = spec%n_radial
-    call interval_points(1, [spec%ri, spec%ro], [nr], [spec%radial_ratio], r)
+    call interval_points(1, [spec%ri, spec%ro], [nr], [spec%radial_ratio], shell%r)
     ! Tangents of the equiangular patch coordinates, exact at 0 and 1.
-    call patch_tangents(np, t)
+    call patch_tangents(np, shell%t)
     ! Patch 1 around x: (1, tan i, tan j); 2 around y: (tan i, 1, tan j);
     ! 3 around z: (tan i, tan j, 1).
-    call block_new(blocks(1), np, np, nr, [INNER, OUTER, ZSYM, 0, 0, YSYM])
-    call block_new(blocks(2), np, np, nr, [INNER, OUTER, ZSYM, 0, 0, XSYM])
-    call block_new(blocks(3), np, np, nr, [INNER, OUTER, YSYM, 0, 0, XSYM])
-    do j = 0, np
-      do i = 0, np
-        d = patch_directions(t(i), t(j))
-        do patch = 1, 3
-          d(:, patch) = d(:, patch) / sqrt(sum(d(:, patch)**2))
-          do k = 0, nr
-            blocks(patch)%x(:, i, j, k) = r(k) * d(:, patch)
-          end do
-        end do
-      end do
-    end do
-    call assemble(blocks, [character(len=NAME_LEN) :: 'inner', 'outer', 'xsym', 'ysym', &
-        'zsym'], spec%ro, mesh)
-  end subroutine mesh_make_shell_octant
+    call sector_blocks(reshape([np, np, nr, np, np, nr, np, np, nr], [3, 3]), &
+        reshape([INNER, OUTER, ZSYM, 0, 0, YSYM, INNER, OUTER, ZSYM, 0, 0, XSYM, &
+        INNER, OUTER, YSYM, 0, 0, XSYM], [6, 3]), [character(len=NAME_LEN) :: 'inner', &
+        'outer', 'xsym', 'ysym', 'zsym'], [XSYM, YSYM, ZSYM], spec%sector, n, face_set, &
+        names, shell%signs)
+    call set_blocks(shell, n, face_set, names, spec%ro)
+    call move_alloc(shell, part)
+  end subroutine shell_part
 
-
-  !> Ball octant: the core block (i, j, k along x, y, z) and three patches
+  !> Ball: the octant's core block (i, j, k along x, y, z) and three patches
   !> (i, j across the core face, k from the core face to the sphere; patch 1
-  !> on the face x = a, 2 on y = a, 3 on z = a). The sphere nodes are
-  !> equiangular cubed-sphere points, radius times a unit direction.
-  !> Sets: outer (the sphere), xmin, ymin, zmin.
-  subroutine mesh_make_ball_octant(spec, mesh, status)
+  !> on the face x = a, 2 on y = a, 3 on z = a); the other octants of the
+  !> sector are its mirror images. The sphere nodes are equiangular
+  !> cubed-sphere points, radius times a unit direction. Sets: outer (the
+  !> sphere), and xmin, ymin, zmin where the sector ends on that plane.
+  subroutine ball_part(spec, part, status)
     type(ball_spec_t), intent(in) :: spec
-    type(global_mesh_t), intent(inout) :: mesh
+    class(block_part_t), allocatable, intent(out) :: part
     type(status_t), intent(inout) :: status
     integer, parameter :: OUTER = 1, XMIN = 2, YMIN = 3, ZMIN = 4
-    type(block_t) :: blocks(4)
-    real(rk), allocatable :: s(:), t(:)
-    real(rk) :: a, d(3, 3), core(3, 3), across
-    integer :: nerr, nc, nr, i, j, k, patch
+    type(ball_part_t), allocatable :: ball
+    integer, allocatable :: n(:, :), face_set(:, :)
+    character(len=NAME_LEN), allocatable :: names(:)
+    integer :: nerr, nc, nr, i
 
-    call mesh%free()
     nerr = status%count
     call require(status, spec%radius > 0.0_rk, 'ball: radius must be > 0 (got ' // &
         real_text(spec%radius) // ')')
@@ -403,57 +624,33 @@ contains
     call require(status, spec%core_fraction >= 0.2_rk .and. spec%core_fraction <= 0.5_rk, &
         'ball: core_fraction must be in [0.2, 0.5] (got ' // real_text(spec%core_fraction) // &
         ')')
+    call require(status, sector_known(spec%sector), "ball: sector must be 'octant', " // &
+        "'quarter', 'half' or 'full' (got '" // trim(spec%sector) // "')")
     if (status%count > nerr) return
 
+    allocate(ball)
     nc = spec%n_core
     nr = spec%n_radial
-    a = spec%core_fraction * spec%radius
-    call interval_points(1, [0.0_rk, 1.0_rk], [nr], [spec%radial_ratio], s)
-    s(0) = 0.0_rk
-    s(nr) = 1.0_rk
-    call patch_tangents(nc, t)
-    call block_new(blocks(1), nc, nc, nc, [ZMIN, 0, YMIN, 0, 0, XMIN])
-    call block_new(blocks(2), nc, nc, nr, [0, OUTER, ZMIN, 0, 0, YMIN])
-    call block_new(blocks(3), nc, nc, nr, [0, OUTER, ZMIN, 0, 0, XMIN])
-    call block_new(blocks(4), nc, nc, nr, [0, OUTER, YMIN, 0, 0, XMIN])
-    do k = 0, nc
-      do j = 0, nc
-        do i = 0, nc
-          blocks(1)%x(:, i, j, k) = a * [core_coordinate(i), core_coordinate(j), &
-              core_coordinate(k)]
-        end do
-      end do
+    ball%nr = nr
+    ball%radius = spec%radius
+    ball%a = spec%core_fraction * spec%radius
+    call interval_points(1, [0.0_rk, 1.0_rk], [nr], [spec%radial_ratio], ball%s)
+    ball%s(0) = 0.0_rk
+    ball%s(nr) = 1.0_rk
+    call patch_tangents(nc, ball%t)
+    ! Core node coordinate i / nc, exactly 0 and 1 at the ends.
+    allocate(ball%cc(0:nc))
+    do i = 0, nc
+      ball%cc(i) = real(i, rk) / real(nc, rk)
     end do
-    do j = 0, nc
-      do i = 0, nc
-        d = patch_directions(t(i), t(j))
-        across = a * core_coordinate(i)
-        core(:, 1) = [a, across, a * core_coordinate(j)]
-        core(:, 2) = [across, a, a * core_coordinate(j)]
-        core(:, 3) = [across, a * core_coordinate(j), a]
-        do patch = 1, 3
-          d(:, patch) = spec%radius * d(:, patch) / sqrt(sum(d(:, patch)**2))
-          do k = 0, nr
-            blocks(patch + 1)%x(:, i, j, k) = (1.0_rk - s(k)) * core(:, patch) &
-                + s(k) * d(:, patch)
-          end do
-          ! The sphere node exactly radius times the unit direction.
-          blocks(patch + 1)%x(:, i, j, nr) = d(:, patch)
-        end do
-      end do
-    end do
-    call assemble(blocks, [character(len=NAME_LEN) :: 'outer', 'xmin', 'ymin', 'zmin'], &
-        spec%radius, mesh)
-
-  contains
-
-    !> Core node coordinate i / nc, exactly 0 and 1 at the ends.
-    pure real(rk) function core_coordinate(ii)
-      integer, intent(in) :: ii
-      core_coordinate = real(ii, rk) / real(nc, rk)
-    end function core_coordinate
-
-  end subroutine mesh_make_ball_octant
+    call sector_blocks(reshape([nc, nc, nc, nc, nc, nr, nc, nc, nr, nc, nc, nr], [3, 4]), &
+        reshape([ZMIN, 0, YMIN, 0, 0, XMIN, 0, OUTER, ZMIN, 0, 0, YMIN, &
+        0, OUTER, ZMIN, 0, 0, XMIN, 0, OUTER, YMIN, 0, 0, XMIN], [6, 4]), &
+        [character(len=NAME_LEN) :: 'outer', 'xmin', 'ymin', 'zmin'], [XMIN, YMIN, ZMIN], &
+        spec%sector, n, face_set, names, ball%signs)
+    call set_blocks(ball, n, face_set, names, spec%radius)
+    call move_alloc(ball, part)
+  end subroutine ball_part
 
   !> Box minus ball octant: three patches (i, j the equiangular patch angles,
   !> k along the ray from the sphere to the box face; patch 1 ends on x = L,
@@ -461,17 +658,14 @@ contains
   !> cubed-sphere direction (i, j); the sphere nodes are radius times the unit
   !> direction, the box nodes L (1, tan, tan) (the face coordinate exactly L).
   !> Sets: inner (the sphere), xmin, ymin, zmin, xmax, ymax, zmax.
-  subroutine mesh_make_box_minus_ball(spec, mesh, status)
+  subroutine box_minus_ball_part(spec, part, status)
     type(box_minus_ball_spec_t), intent(in) :: spec
-    type(global_mesh_t), intent(inout) :: mesh
+    class(block_part_t), allocatable, intent(out) :: part
     type(status_t), intent(inout) :: status
     integer, parameter :: INNER = 1, XMIN = 2, YMIN = 3, ZMIN = 4, XMAX = 5, YMAX = 6, ZMAX = 7
-    type(block_t) :: blocks(3)
-    real(rk), allocatable :: s(:), t(:)
-    real(rk) :: d(3, 3), sphere(3)
-    integer :: nerr, np, nr, i, j, k, patch
+    type(box_minus_ball_part_t), allocatable :: bmb
+    integer :: nerr, np, nr
 
-    call mesh%free()
     nerr = status%count
     call require(status, spec%radius > 0.0_rk, 'box_minus_ball: radius must be > 0 (got ' // &
         real_text(spec%radius) // ')')
@@ -484,31 +678,83 @@ contains
         // '> 0 (got ' // real_text(spec%radial_ratio) // ')')
     if (status%count > nerr) return
 
+    allocate(bmb)
     np = spec%n_patch
     nr = spec%n_radial
-    call interval_points(1, [0.0_rk, 1.0_rk], [nr], [spec%radial_ratio], s)
-    s(0) = 0.0_rk
-    s(nr) = 1.0_rk
-    call patch_tangents(np, t)
-    call block_new(blocks(1), np, np, nr, [INNER, XMAX, ZMIN, 0, 0, YMIN])
-    call block_new(blocks(2), np, np, nr, [INNER, YMAX, ZMIN, 0, 0, XMIN])
-    call block_new(blocks(3), np, np, nr, [INNER, ZMAX, YMIN, 0, 0, XMIN])
-    do j = 0, np
-      do i = 0, np
-        d = patch_directions(t(i), t(j))
-        do patch = 1, 3
-          sphere = spec%radius * d(:, patch) / sqrt(sum(d(:, patch)**2))
-          blocks(patch)%x(:, i, j, 0) = sphere
-          do k = 1, nr
-            blocks(patch)%x(:, i, j, k) = (1.0_rk - s(k)) * sphere + s(k) * spec%length &
-                * d(:, patch)
-          end do
-          blocks(patch)%x(:, i, j, nr) = spec%length * d(:, patch)
-        end do
-      end do
-    end do
-    call assemble(blocks, [character(len=NAME_LEN) :: 'inner', 'xmin', 'ymin', 'zmin', &
-        'xmax', 'ymax', 'zmax'], spec%length, mesh)
+    bmb%nr = nr
+    bmb%radius = spec%radius
+    bmb%length = spec%length
+    call interval_points(1, [0.0_rk, 1.0_rk], [nr], [spec%radial_ratio], bmb%s)
+    bmb%s(0) = 0.0_rk
+    bmb%s(nr) = 1.0_rk
+    call patch_tangents(np, bmb%t)
+    call set_blocks(bmb, reshape([np, np, nr, np, np, nr, np, np, nr], [3, 3]), &
+        reshape([INNER, XMAX, ZMIN, 0, 0, YMIN, INNER, YMAX, ZMIN, 0, 0, XMIN, &
+        INNER, ZMAX, YMIN, 0, 0, XMIN], [6, 3]), [character(len=NAME_LEN) :: 'inner', 'xmin', &
+        'ymin', 'zmin', 'xmax', 'ymax', 'zmax'], spec%length)
+    call move_alloc(bmb, part)
+  end subroutine box_minus_ball_part
+
+  ! ------------------------------------------ whole parts (tests and tools)
+
+  !> The whole part of a generator as a global mesh (part_assemble).
+  subroutine whole_part(part, mesh)
+    class(block_part_t), allocatable, intent(inout) :: part
+    type(global_mesh_t), intent(inout) :: mesh
+    call mesh%free()
+    if (.not. allocated(part)) return
+    call part_prepare(part)
+    call part_assemble(part, mesh)
+  end subroutine whole_part
+
+  !> Solid rod along z, whole (rod_part).
+  subroutine mesh_make_rod(spec, mesh, status)
+    type(rod_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    class(block_part_t), allocatable :: part
+    call rod_part(spec, part, status)
+    call whole_part(part, mesh)
+  end subroutine mesh_make_rod
+
+  !> Thick tube, whole (tube_part).
+  subroutine mesh_make_tube(spec, mesh, status)
+    type(tube_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    class(block_part_t), allocatable :: part
+    call tube_part(spec, part, status)
+    call whole_part(part, mesh)
+  end subroutine mesh_make_tube
+
+  !> Spherical shell, whole (shell_part).
+  subroutine mesh_make_shell(spec, mesh, status)
+    type(shell_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    class(block_part_t), allocatable :: part
+    call shell_part(spec, part, status)
+    call whole_part(part, mesh)
+  end subroutine mesh_make_shell
+
+  !> Ball, whole (ball_part).
+  subroutine mesh_make_ball(spec, mesh, status)
+    type(ball_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    class(block_part_t), allocatable :: part
+    call ball_part(spec, part, status)
+    call whole_part(part, mesh)
+  end subroutine mesh_make_ball
+
+  !> Box minus ball octant, whole (box_minus_ball_part).
+  subroutine mesh_make_box_minus_ball(spec, mesh, status)
+    type(box_minus_ball_spec_t), intent(in) :: spec
+    type(global_mesh_t), intent(inout) :: mesh
+    type(status_t), intent(inout) :: status
+    class(block_part_t), allocatable :: part
+    call box_minus_ball_part(spec, part, status)
+    call whole_part(part, mesh)
   end subroutine mesh_make_box_minus_ball
 
   ! ---------------------------------------------------------------- helpers
@@ -536,203 +782,6 @@ contains
     d(:, 2) = [ti, 1.0_rk, tj]
     d(:, 3) = [ti, tj, 1.0_rk]
   end function patch_directions
-
-  !> Allocate a block of n1 x n2 x n3 zones with the given face sets.
-  subroutine block_new(block, n1, n2, n3, face_set)
-    type(block_t), intent(inout) :: block
-    integer, intent(in) :: n1, n2, n3
-    integer, intent(in) :: face_set(6)
-    if (allocated(block%x)) deallocate(block%x)
-    block%n = [n1, n2, n3]
-    allocate(block%x(3, 0:n1, 0:n2, 0:n3))
-    block%x = 0.0_rk
-    block%face_set = face_set
-  end subroutine block_new
-
-  !> Corners of hex (i, j, k) of a block in VTK order.
-  pure function block_hex(block, i, j, k) result(x)
-    type(block_t), intent(in) :: block
-    integer, intent(in) :: i, j, k
-    real(rk) :: x(3, 8)
-    x(:, 1) = block%x(:, i, j, k)
-    x(:, 2) = block%x(:, i + 1, j, k)
-    x(:, 3) = block%x(:, i + 1, j + 1, k)
-    x(:, 4) = block%x(:, i, j + 1, k)
-    x(:, 5) = block%x(:, i, j, k + 1)
-    x(:, 6) = block%x(:, i + 1, j, k + 1)
-    x(:, 7) = block%x(:, i + 1, j + 1, k + 1)
-    x(:, 8) = block%x(:, i, j + 1, k + 1)
-  end function block_hex
-
-  !> Mirror a left-handed block in i so that its hexes have positive volume.
-  subroutine block_orient(block)
-    type(block_t), intent(inout) :: block
-    real(rk), allocatable :: mirrored(:, :, :, :)
-    integer :: swap, i
-    if (hex_volume(block_hex(block, 0, 0, 0)) >= 0.0_rk) return
-    allocate(mirrored(3, 0:block%n(1), 0:block%n(2), 0:block%n(3)))
-    do i = 0, block%n(1)
-      mirrored(:, i, :, :) = block%x(:, block%n(1) - i, :, :)
-    end do
-    call move_alloc(mirrored, block%x)
-    swap = block%face_set(4)
-    block%face_set(4) = block%face_set(6)
-    block%face_set(6) = swap
-  end subroutine block_orient
-
-  !> Build the global mesh from blocks: orient, merge shared nodes, connect, collect sets.
-  subroutine assemble(blocks, names, length_scale, mesh)
-    type(block_t), intent(inout) :: blocks(:)
-    character(len=*), intent(in) :: names(:) !< set names, indexed by face_set
-    real(rk), intent(in) :: length_scale !< body size, for the merge tolerance
-    type(global_mesh_t), intent(inout) :: mesh
-    real(rk), allocatable :: raw(:, :)
-    integer, allocatable :: node_offset(:), zone_offset(:), new_id(:)
-    integer :: b, nraw, i, j, k, z, s, f, n(3), pass, count_face
-
-    do b = 1, size(blocks)
-      call block_orient(blocks(b))
-    end do
-    allocate(node_offset(size(blocks)), zone_offset(size(blocks)))
-    nraw = 0
-    mesh%nzone = 0
-    do b = 1, size(blocks)
-      node_offset(b) = nraw
-      zone_offset(b) = mesh%nzone
-      nraw = nraw + product(blocks(b)%n + 1)
-      mesh%nzone = mesh%nzone + product(blocks(b)%n)
-    end do
-    allocate(raw(3, nraw))
-    do b = 1, size(blocks)
-      raw(:, node_offset(b) + 1:node_offset(b) + product(blocks(b)%n + 1)) = &
-          reshape(blocks(b)%x, [3, product(blocks(b)%n + 1)])
-    end do
-    call merge_nodes(raw, MERGE_TOLERANCE * length_scale, new_id, mesh%coordinates, mesh%nnode)
-
-    allocate(mesh%connectivity(8, mesh%nzone), mesh%zone_block(mesh%nzone))
-    mesh%zone_block = 0
-    do b = 1, size(blocks)
-      n = blocks(b)%n
-      do k = 0, n(3) - 1
-        do j = 0, n(2) - 1
-          do i = 0, n(1) - 1
-            z = zone_offset(b) + 1 + i + n(1) * (j + n(2) * k)
-            mesh%connectivity(:, z) = int([raw_id(i, j, k), raw_id(i + 1, j, k), &
-                raw_id(i + 1, j + 1, k), raw_id(i, j + 1, k), raw_id(i, j, k + 1), &
-                raw_id(i + 1, j, k + 1), raw_id(i + 1, j + 1, k + 1), raw_id(i, j + 1, k + 1)], ik)
-          end do
-        end do
-      end do
-    end do
-
-    ! Sets: count in the first pass, fill in the second.
-    mesh%nset = size(names)
-    allocate(mesh%set_name(mesh%nset), mesh%set_start(mesh%nset + 1))
-    mesh%set_name = names
-    do pass = 1, 2
-      count_face = 0
-      mesh%set_start(1) = 1
-      do s = 1, mesh%nset
-        do b = 1, size(blocks)
-          n = blocks(b)%n
-          do f = 1, 6
-            if (blocks(b)%face_set(f) /= s) cycle
-            do k = 0, n(3) - 1
-              do j = 0, n(2) - 1
-                do i = 0, n(1) - 1
-                  if (.not. on_face(f, i, j, k, n)) cycle
-                  count_face = count_face + 1
-                  if (pass == 2) then
-                    mesh%set_zone(count_face) = int(zone_offset(b) + 1 + i + n(1) * (j &
-                        + n(2) * k), ik)
-                    mesh%set_face(count_face) = int(f, ik)
-                  end if
-                end do
-              end do
-            end do
-          end do
-        end do
-        mesh%set_start(s + 1) = count_face + 1
-      end do
-      if (pass == 1) allocate(mesh%set_zone(count_face), mesh%set_face(count_face))
-    end do
-
-  contains
-
-    !> Merged id of node (ii, jj, kk) of block b.
-    integer function raw_id(ii, jj, kk)
-      integer, intent(in) :: ii, jj, kk
-      raw_id = new_id(node_offset(b) + 1 + ii + (n(1) + 1) * (jj + (n(2) + 1) * kk))
-    end function raw_id
-
-  end subroutine assemble
-
-  !> True when hex (i, j, k) of a block with n zones has face f on the block surface.
-  pure logical function on_face(f, i, j, k, n)
-    integer, intent(in) :: f, i, j, k, n(3)
-    select case (f)
-    case (1)
-      on_face = k == 0
-    case (2)
-      on_face = k == n(3) - 1
-    case (3)
-      on_face = j == 0
-    case (4)
-      on_face = i == n(1) - 1
-    case (5)
-      on_face = j == n(2) - 1
-    case default
-      on_face = i == 0
-    end select
-  end function on_face
-
-  !> Merge points closer than tolerance: new_id maps every raw point to its
-  !> node, numbered in order of first appearance; coordinates are the nodes'.
-  subroutine merge_nodes(raw, tolerance, new_id, coordinates, nnode)
-    real(rk), intent(in) :: raw(:, :) !< (3, npoint)
-    real(rk), intent(in) :: tolerance
-    integer, allocatable, intent(out) :: new_id(:)
-    real(rk), allocatable, intent(out) :: coordinates(:, :)
-    integer, intent(out) :: nnode
-    ! A direction along no mesh line, so few points share a key.
-    real(rk), parameter :: DIRECTION(3) = [0.8017_rk, 0.5323_rk, 0.2719_rk]
-    real(rk), allocatable :: key(:)
-    integer, allocatable :: order(:), representative(:)
-    real(rk) :: window
-    integer :: npoint, a, c, p, q
-
-    npoint = size(raw, 2)
-    key = matmul(DIRECTION, raw)
-    call sort_order(key, order)
-    window = tolerance * norm2(DIRECTION)
-    allocate(representative(npoint))
-    representative = 0
-    do a = 1, npoint
-      p = order(a)
-      if (representative(p) /= 0) cycle
-      representative(p) = p
-      do c = a + 1, npoint
-        q = order(c)
-        if (key(q) - key(p) > window) exit
-        if (representative(q) == 0) then
-          if (norm2(raw(:, q) - raw(:, p)) <= tolerance) representative(q) = p
-        end if
-      end do
-    end do
-    allocate(new_id(npoint), coordinates(3, npoint))
-    new_id = 0
-    nnode = 0
-    do p = 1, npoint
-      q = representative(p)
-      if (new_id(q) == 0) then
-        nnode = nnode + 1
-        new_id(q) = nnode
-        coordinates(:, nnode) = raw(:, q)
-      end if
-      new_id(p) = new_id(q)
-    end do
-    coordinates = coordinates(:, 1:nnode)
-  end subroutine merge_nodes
 
   !> (cos, sin) of the angle (pi/2) quarters j / n, exact at multiples of pi/2.
   pure function circle_point(j, n, quarters) result(c)

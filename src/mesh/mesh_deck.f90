@@ -11,7 +11,7 @@ module mesh_deck
   use parallel_env, only: par_rank, par_bcast
   use mesh_global, only: box_spec_t, MAX_INTERVALS, NAME_LEN
   use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t, ball_spec_t, &
-      box_minus_ball_spec_t
+      box_minus_ball_spec_t, sector_known
   implicit none
   private
   public :: read_mesh
@@ -68,8 +68,8 @@ module mesh_deck
       "rod: length; box_minus_ball: box edge L (> R)"), &
       key_t("z0", "r", "0", "length", &
       "rod: z of the bottom face"), &
-      key_t("sector", "c", "'quarter' (rod), 'full' (tube)", "", &
-      "rod: 'quarter' or 'full'; tube: 'full', 'half' or 'quarter'"), &
+      key_t("sector", "c", "'quarter' (rod), 'full' (tube), 'octant' (ball, shell)", "", &
+      "rod: quarter, full; tube: full, half, quarter; ball, shell: octant, quarter, half, full"), &
       key_t("n_core", "i", "6 (rod), 8 (ball)", "", &
       "rod: zones along each edge of the square core; ball: of the cube core"), &
       key_t("n_radial", "i", "4 (rod), 3 (tube), 8 (shell), 6 (ball), 16 (box_minus_ball)", "", &
@@ -243,17 +243,23 @@ contains
       if (n_patch /= -1) part%shell%n_patch = n_patch
       if (n_radial /= -1) part%shell%n_radial = n_radial
       if (radial_ratio /= UNSET) part%shell%radial_ratio = radial_ratio
+      if (len_trim(sector) > 0) part%shell%sector = to_lower(sector)
+      if (.not. sector_known(part%shell%sector)) call status%add(trim(where)//': sector: '''// &
+          trim(sector)//''' is not a shell sector (valid: octant, quarter, half, full)')
     case ('ball')
       if (box_keys) call status%add(trim(where)//': type: ''ball'' does not take box keys '// &
           '(x, nx, ...)')
       if (length /= UNSET .or. ri /= UNSET .or. ro /= UNSET .or. n_axial /= -1 .or. &
           n_theta /= -1 .or. n_patch /= -1) call status%add(trim(where)//': type: ''ball'' '// &
-          'takes radius, n_core, n_radial, radial_ratio, core_fraction')
+          'takes radius, n_core, n_radial, radial_ratio, core_fraction, sector')
       if (radius /= UNSET) part%ball%radius = radius
       if (n_core /= -1) part%ball%n_core = n_core
       if (n_radial /= -1) part%ball%n_radial = n_radial
       if (radial_ratio /= UNSET) part%ball%radial_ratio = radial_ratio
       if (core_fraction /= UNSET) part%ball%core_fraction = core_fraction
+      if (len_trim(sector) > 0) part%ball%sector = to_lower(sector)
+      if (.not. sector_known(part%ball%sector)) call status%add(trim(where)//': sector: '''// &
+          trim(sector)//''' is not a ball sector (valid: octant, quarter, half, full)')
       associate(ball => part%ball)
         if (.not. (ball%radius > 0.0_rk)) call status%add(trim(where)//': radius: must be > 0')
         if (ball%n_core < 1) call status%add(trim(where)//': n_core: must be >= 1')

@@ -13,7 +13,7 @@ module mesh_range
   implicit none
   private
   public :: range_init, range_add_box, range_add_global, range_set_index, box_sizes, &
-      box_set_counts
+      range_grow_faces, box_set_counts
 
   type, public :: mesh_range_t
     integer(i8) :: nzone_global = 0 !< zones of the whole mesh
@@ -123,7 +123,7 @@ contains
         if (on(f)) nnew = nnew + count(sets(:, f) > 0)
       end do
     end do
-    call grow_faces(range, nnew)
+    call range_grow_faces(range, nnew)
     pos = range%nface
     do g = zfirst, zlast
       local = g - range%first + 1
@@ -204,7 +204,7 @@ contains
             nnew = nnew + count(sets(:, k) > 0)
       end do
     end do
-    call grow_faces(range, nnew)
+    call range_grow_faces(range, nnew)
     pos = range%nface
     do k = 1, piece%nset
       do s = piece%set_start(k), piece%set_start(k + 1) - 1
@@ -224,7 +224,7 @@ contains
   end subroutine range_add_global
 
   !> Room for n more set faces.
-  subroutine grow_faces(range, n)
+  subroutine range_grow_faces(range, n)
     type(mesh_range_t), intent(inout) :: range
     integer, intent(in) :: n
     integer :: m
@@ -244,6 +244,6 @@ contains
     allocate(b(m + n))
     b(:m) = range%face_ord(:m)
     call move_alloc(b, range%face_ord)
-  end subroutine grow_faces
+  end subroutine range_grow_faces
 
 end module mesh_range

@@ -11,7 +11,7 @@ program test_contact_search
   use core_status, only: status_t
   use mesh_global, only: global_mesh_t, box_spec_t, mesh_make_box, NAME_LEN
   use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t, mesh_make_rod, &
-      mesh_make_tube, mesh_make_shell_octant
+      mesh_make_tube, mesh_make_shell
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
       surface_update_edges
   use contact_search, only: primary_pair_t, bucket_search, closest_point, contact_kind, &
@@ -433,7 +433,7 @@ contains
         n_radial=1, n_axial=4)
     call mesh_make_tube(tube_spec, tube, status)
     shell_spec = shell_spec_t(ri=0.8_rk, ro=1.0_rk, n_patch=3, n_radial=1)
-    call mesh_make_shell_octant(shell_spec, shell, status)
+    call mesh_make_shell(shell_spec, shell, status)
     call check_true('curved meshes built', status%ok())
     call run_pair('box / box', box_a, box_b, 0.25_rk)
     call run_pair('box / quarter rod', box_a, rod, 0.25_rk)

@@ -13,8 +13,8 @@ program test_mesh_curved
   use mesh_geometry, only: hex_volume, quad_vector_area, HEX_FACE_NODES
   use mesh_global, only: global_mesh_t
   use mesh_curved, only: rod_spec_t, tube_spec_t, shell_spec_t, ball_spec_t, &
-      box_minus_ball_spec_t, mesh_make_rod, mesh_make_tube, mesh_make_shell_octant, &
-      mesh_make_ball_octant, mesh_make_box_minus_ball
+      box_minus_ball_spec_t, mesh_make_rod, mesh_make_tube, mesh_make_shell, &
+      mesh_make_ball, mesh_make_box_minus_ball
   use check, only: check_true, check_close, check_summary
   implicit none
   real(rk), parameter :: PI = acos(-1.0_rk)
@@ -250,7 +250,7 @@ contains
     zero = 0.0_rk
     do level = 1, 2
       spec = shell_spec_t(ri=ri, ro=ro, n_patch=4 * level, n_radial=2 * level)
-      call mesh_make_shell_octant(spec, mesh, status)
+      call mesh_make_shell(spec, mesh, status)
       label = 'shell level ' // digit(level)
       call check_true(label // ': made', status%ok())
       np = spec%n_patch
@@ -294,7 +294,7 @@ contains
     zero = 0.0_rk
     do level = 1, 2
       spec = ball_spec_t(radius=r, n_core=4 * level, n_radial=3 * level, radial_ratio=0.8_rk)
-      call mesh_make_ball_octant(spec, mesh, status)
+      call mesh_make_ball(spec, mesh, status)
       label = 'ball level ' // digit(level)
       call check_true(label // ': made', status%ok())
       nc = spec%n_core
@@ -390,10 +390,10 @@ contains
     call mesh_make_tube(tube, mesh, status)
     volume = check_mesh('default full tube', mesh, 8.0_rk, quality=.true.)
     call check_close('default tube: volume', volume, PI * 0.36_rk * 8.0_rk, 5.0e-3_rk)
-    call mesh_make_shell_octant(shell, mesh, status)
+    call mesh_make_shell(shell, mesh, status)
     volume = check_mesh('default shell', mesh, 10.0_rk, quality=.true.)
     call check_close('default shell: volume', volume, PI / 6.0_rk * 488.0_rk, 5.0e-3_rk)
-    call mesh_make_ball_octant(ball, mesh, status)
+    call mesh_make_ball(ball, mesh, status)
     volume = check_mesh('default ball', mesh, 0.5_rk, quality=.true.)
     call check_close('default ball: volume', volume, PI / 48.0_rk, 5.0e-3_rk)
     call mesh_make_box_minus_ball(box_minus_ball, mesh, status)
@@ -438,7 +438,7 @@ contains
         index(status%messages(2), 'tube: radial_reference') == 1)
     call status%clear()
 
-    call mesh_make_shell_octant(shell_spec_t(ri=10.0_rk, ro=8.0_rk, n_patch=0, &
+    call mesh_make_shell(shell_spec_t(ri=10.0_rk, ro=8.0_rk, n_patch=0, &
         radial_ratio=0.0_rk), mesh, status)
     call check_true('bad shell: three problems', status%count == 3)
     call check_true('bad shell: ro named', index(status%messages(1), 'shell: ro') == 1)
@@ -447,7 +447,7 @@ contains
         index(status%messages(3), 'shell: radial_ratio') == 1)
     call status%clear()
 
-    call mesh_make_ball_octant(ball_spec_t(radius=0.0_rk, n_radial=0, core_fraction=0.6_rk), &
+    call mesh_make_ball(ball_spec_t(radius=0.0_rk, n_radial=0, core_fraction=0.6_rk), &
         mesh, status)
     call check_true('bad ball: three problems', status%count == 3)
     call check_true('bad ball: radius named', index(status%messages(1), 'ball: radius') == 1)
