@@ -1,5 +1,5 @@
-!> Curved-body generators (rod, tube, shell octant, ball octant, box minus
-!> ball octant), each at two resolutions:
+!> Curved-body generators (rod, tube, shell and ball as octant, quarter,
+!> half and whole sphere, box minus ball octant), each at two resolutions:
 !> positive volumes and scaled Jacobians, volume and set areas converging to
 !> the exact values at second order (flat faces on a curved surface: error
 !> ~ h^2), nodes exactly on their circle or sphere (1e-12 relative) and
@@ -39,6 +39,9 @@ program test_mesh_curved
   call test_shell()
   call test_ball()
   call test_box_minus_ball()
+  call test_sectors('quarter', 0.25_rk, [1, 2])
+  call test_sectors('half', 0.5_rk, [2])
+  call test_sectors('full', 1.0_rk, [integer ::])
   call test_defaults()
   call test_bad_specs()
   call check_summary()
@@ -320,6 +323,88 @@ contains
     end do
     call mesh%free()
   end subroutine test_ball
+
+  !> Ball and shell sectors beyond the octant ('quarter': x, y >= 0; 'half':
+  !> y >= 0; 'full'): copies of the octant merged across the planes they
+  !> share. Volume and sphere area converge at second order to the sector's
+  !> share of the exact values (1/4, 1/2, 1); the planes the sector ends on
+  !> are flat sets of the exact half or whole disc (annulus), facing out;
+  !> the planes inside are gone (check_mesh: no coincident nodes, every
+  !> interior face shared by two hexes, the boundary exactly the sets).
+  subroutine test_sectors(sector, share, planes)
+    character(len=*), intent(in) :: sector
+    real(rk), intent(in) :: share !< of the whole sphere
+    integer, intent(in) :: planes(:) !< axes of the planes the sector ends on
+    type(ball_spec_t) :: ball
+    type(shell_spec_t) :: shell
+    type(global_mesh_t) :: mesh
+    type(status_t) :: status
+    real(rk) :: volume(2, 2), outer(2, 2), plane_area(2, 2, 3), r, ri, ro, zero(3)
+    integer :: level, a, copies
+    character(len=*), parameter :: ball_names(3) = ['xmin', 'ymin', 'zmin']
+    character(len=*), parameter :: shell_names(3) = ['xsym', 'ysym', 'zsym']
+    character(len=:), allocatable :: label
+
+    r = 0.7_rk
+    ri = 0.8_rk
+    ro = 1.0_rk
+    zero = 0.0_rk
+    copies = nint(8.0_rk * share)
+    plane_area = 0.0_rk
+    do level = 1, 2
+      ball = ball_spec_t(radius=r, n_core=4 * level, n_radial=3 * level, radial_ratio=0.8_rk, &
+          sector=sector)
+      call mesh_make_ball(ball, mesh, status)
+      label = 'ball ' // sector // ' level ' // digit(level)
+      call check_true(label // ': made', status%ok())
+      call check_true(label // ': zones', mesh%nzone == copies * (ball%n_core**3 + 3 * &
+          ball%n_core**2 * ball%n_radial))
+      call check_true(label // ': sets', mesh%nset == 1 + size(planes))
+      volume(1, level) = check_mesh(label, mesh, r, quality=.true.)
+      outer(1, level) = set_area(mesh, 'outer')
+      call check_on_sphere(label // ': outer', mesh, 'outer', r)
+      call check_radial_outward(label // ': outer', mesh, 'outer', zero, zero, 1.0_rk)
+      do a = 1, size(planes)
+        call check_plane(label // ': ' // ball_names(planes(a)), mesh, ball_names(planes(a)), &
+            planes(a), 0.0_rk, -unit(planes(a)))
+        plane_area(1, level, a) = set_area(mesh, ball_names(planes(a)))
+      end do
+      shell = shell_spec_t(ri=ri, ro=ro, n_patch=4 * level, n_radial=2 * level, sector=sector)
+      call mesh_make_shell(shell, mesh, status)
+      label = 'shell ' // sector // ' level ' // digit(level)
+      call check_true(label // ': made', status%ok())
+      call check_true(label // ': zones', mesh%nzone == copies * 3 * shell%n_patch**2 * &
+          shell%n_radial)
+      call check_true(label // ': sets', mesh%nset == 2 + size(planes))
+      volume(2, level) = check_mesh(label, mesh, ro)
+      outer(2, level) = set_area(mesh, 'outer')
+      call check_on_sphere(label // ': inner', mesh, 'inner', ri)
+      call check_on_sphere(label // ': outer', mesh, 'outer', ro)
+      call check_radial_outward(label // ': inner', mesh, 'inner', zero, zero, -1.0_rk)
+      do a = 1, size(planes)
+        call check_plane(label // ': ' // shell_names(planes(a)), mesh, &
+            shell_names(planes(a)), planes(a), 0.0_rk, -unit(planes(a)))
+        plane_area(2, level, a) = set_area(mesh, shell_names(planes(a)))
+      end do
+    end do
+    call check_order('ball ' // sector // ' volume', volume(1, :), share * 4.0_rk / 3.0_rk &
+        * PI * r**3)
+    call check_order('ball ' // sector // ' outer area', outer(1, :), share * 4.0_rk * PI &
+        * r**2)
+    call check_order('shell ' // sector // ' volume', volume(2, :), share * 4.0_rk / 3.0_rk &
+        * PI * (ro**3 - ri**3))
+    call check_order('shell ' // sector // ' outer area', outer(2, :), share * 4.0_rk * PI &
+        * ro**2)
+    ! A plane the sector ends on holds 2 share of the disc (a quarter
+    ! sphere ends on two half discs, a half sphere on one whole disc).
+    do a = 1, size(planes)
+      call check_order('ball ' // sector // ' plane area', plane_area(1, :, a), 2.0_rk * &
+          share * PI * r**2)
+      call check_order('shell ' // sector // ' plane area', plane_area(2, :, a), 2.0_rk * &
+          share * PI * (ro**2 - ri**2))
+    end do
+    call mesh%free()
+  end subroutine test_sectors
 
   !> Box minus ball octant: volume L^3 - pi R^3 / 6, sphere area pi R^2 / 2,
   !> outer faces L^2 exactly, symmetry faces L^2 - pi R^2 / 4.
