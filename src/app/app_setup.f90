@@ -13,6 +13,7 @@ module app_setup
   use mesh_blocks, only: block_part_t, part_assemble, range_add_part, part_set_counts
   use mesh_local, only: mesh_t
   use mesh_range, only: mesh_range_t, range_init, range_add_box, range_add_global, &
+      range_add_scattered, &
       range_set_index, box_sizes, box_set_counts
   use mesh_distribute, only: mesh_distribute_build, distribute_stats_t
   use contact_surface, only: set_names_of
@@ -265,12 +266,11 @@ contains
             if (need_global) call part_assemble(curved(k)%part, piece)
           end if
         case ('gmsh', 'exodus')
-          call mesh_import_file(spec%mesh_type, spec%mesh_path, piece, group_names, status)
-          if (status%ok() .and. par_rank() == 0) then
-            call mesh_import_summary(piece, group_names, trim(where)//': '// &
-                trim(spec%mesh_type)//' mesh file '''//spec%mesh_path//''' read:', lines)
-            write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
-          end if
+          call import_part()
+          if (.not. status%ok()) return
+          nzone = nzone + piece%nzone
+          nnode = nnode + piece%nnode
+          cycle
         case default
           is_box = .true.
           call box_sizes(spec%box, nx, ny, nz)
@@ -347,7 +347,12 @@ contains
           counts = int(piece%set_start(2:) - piece%set_start(:piece%nset), i8)
           allocate(sets(2, piece%nset), ord0(2, piece%nset))
           call map_sets(piece%set_name(:piece%nset))
-          call range_add_global(range, piece, zone0, node0, sets, ord0, lo, hi)
+          if (need_global) then
+            call range_add_global(range, piece, zone0, node0, sets, ord0, lo, hi)
+          else
+            call range_add_scattered(range, piece, int(piece%nzone, i8), zone0, node0, sets, &
+                ord0, lo, hi)
+          end if
           zone0 = zone0 + piece%nzone
           node0 = node0 + piece%nnode
         end if
@@ -382,6 +387,81 @@ contains
     call check_contacts(config, mesh, status)
 
   contains
+
+    !> Imported part k: rank 0 reads the file (every rank when the whole mesh
+    !> is wanted), places it and gives its zones blocks by group name; every
+    !> rank then has its problems, the blocks it claimed and the part's sizes
+    !> and set names (range_add_scattered sends the zones later).
+    subroutine import_part()
+      logical :: reader
+      integer :: count0, nsize(4)
+      character(len=:), allocatable :: text
+      reader = need_global .or. par_rank() == 0
+      count0 = status%count
+      associate(spec => config%parts(k), piece => pieces(k))
+        if (reader) then
+          call mesh_import_file(spec%mesh_type, spec%mesh_path, piece, group_names, status)
+          if (status%count == count0) then
+            if (par_rank() == 0) then
+              call mesh_import_summary(piece, group_names, trim(where)//': '// &
+                  trim(spec%mesh_type)//' mesh file '''//spec%mesh_path//''' read:', lines)
+              write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
+            end if
+            if (spec%rotation_angle /= 0.0_rk) call rotate(piece%coordinates, &
+                spec%rotation_axis, spec%rotation_angle)
+            do n = 1, piece%nnode
+              piece%coordinates(:, n) = piece%coordinates(:, n) + spec%offset
+            end do
+            if (part_block(k) > 0) then
+              piece%zone_block = int(part_block(k), ik)
+            else
+              call assign_blocks_by_name(config, where, mesh_import_group_kind( &
+                  spec%mesh_type), spec%mesh_path, group_names, piece, claimed, status)
+              imported = imported//'; '//mesh_import_group_kind(spec%mesh_type)//'s of '''// &
+                  spec%mesh_path//''':'
+              do n = 1, size(group_names)
+                if (any(piece%zone_block == n)) imported = imported//' '//trim(group_names(n))
+              end do
+            end if
+          end if
+        end if
+        if (need_global) return
+        ! Rank 0's problems, claims and sizes to every rank.
+        nsize = [status%count - count0, piece%nzone, piece%nnode, piece%nset]
+        call par_bcast(nsize)
+        do n = 1, nsize(1)
+          text = ''
+          if (par_rank() == 0) text = trim(status%messages(min(count0 + n, size( &
+              status%messages))))
+          call bcast_text(text)
+          if (par_rank() /= 0) call status%add(text)
+        end do
+        if (nsize(1) > 0) return
+        call par_bcast(claimed)
+        call bcast_text(imported)
+        if (par_rank() /= 0) then
+          piece%nzone = nsize(2)
+          piece%nnode = nsize(3)
+          piece%nset = nsize(4)
+          allocate(piece%set_name(piece%nset), piece%set_start(piece%nset + 1))
+        end if
+        call par_bcast(piece%set_name)
+        call par_bcast(piece%set_start)
+      end associate
+    end subroutine import_part
+
+    !> text from rank 0 on every rank.
+    subroutine bcast_text(text)
+      character(len=:), allocatable, intent(inout) :: text
+      integer :: length(1)
+      length = len(text)
+      call par_bcast(length)
+      if (par_rank() /= 0) then
+        deallocate(text)
+        allocate(character(len=length(1)) :: text)
+      end if
+      call par_bcast(text)
+    end subroutine bcast_text
 
     !> The part's rotation and offset on the range's zones lo..hi.
     subroutine place(lo, hi)
