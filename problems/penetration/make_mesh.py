@@ -60,6 +60,11 @@ LEVELS = {
     # 0.24 mm (fine).
     "coarse": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=1.2e-3, h_far=30.0e-3),
     "fine": dict(n_core=1, n_ring=1, h_rod=0.8e-3, h=0.8e-3, h_far=20.0e-3),
+    # Studies of the nose flow (README.md): the coarse rod on a target with
+    # 0.4 mm or 0.6 mm zones near the axis, fine only down to 20 mm (the first
+    # microseconds of a shot; not for whole shots).
+    "axis04": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.4e-3, h_far=30.0e-3, z_fine=20.0e-3),
+    "axis06": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.6e-3, h_far=30.0e-3, z_fine=20.0e-3),
 }
 
 
@@ -289,8 +294,9 @@ def build(level, tip="flat"):
     radii = R_FINE + graded(TARGET_RADIUS - R_FINE, h, spec["h_far"])[1:]
     target_section = Section(max(1, round(0.5 * R_FINE / h)),
                              np.linspace(0.0, 1.0, n_fine + 1), radii / R_FINE)
-    z_fine = -graded(Z_FINE, h, h)
-    z_deep = -Z_FINE - graded(DEPTH - Z_FINE, h, spec["h_far"] / 2.0)[1:]
+    fine_depth = spec.get("z_fine", Z_FINE)
+    z_fine = -graded(fine_depth, h, h)
+    z_deep = -fine_depth - graded(DEPTH - fine_depth, h, spec["h_far"] / 2.0)[1:]
     z_target = np.concatenate([z_deep[::-1], z_fine[::-1]])
     mesh.extrude("target", target_section, z_target, lambda z: R_FINE,
                  dict(xsym="xsym", ysym="ysym", outer="target_side", bottom="target_bottom",
