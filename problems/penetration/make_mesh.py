@@ -65,6 +65,12 @@ LEVELS = {
     # microseconds of a shot; not for whole shots).
     "axis04": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.4e-3, h_far=30.0e-3, z_fine=20.0e-3),
     "axis06": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.6e-3, h_far=30.0e-3, z_fine=20.0e-3),
+    "axis04z12": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.4e-3, h_z=1.2e-3, h_far=30.0e-3,
+                      z_fine=20.0e-3),
+    # The coarse rod on a target with 0.4 mm zones across and 1.2 mm along the
+    # axis down to 250 mm: what the study says a shot needs (not committed as a
+    # .msh; no deck uses it yet).
+    "axis": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.4e-3, h_z=1.2e-3, h_far=30.0e-3),
 }
 
 
@@ -295,8 +301,9 @@ def build(level, tip="flat"):
     target_section = Section(max(1, round(0.5 * R_FINE / h)),
                              np.linspace(0.0, 1.0, n_fine + 1), radii / R_FINE)
     fine_depth = spec.get("z_fine", Z_FINE)
-    z_fine = -graded(fine_depth, h, h)
-    z_deep = -fine_depth - graded(DEPTH - fine_depth, h, spec["h_far"] / 2.0)[1:]
+    h_z = spec.get("h_z", h)  # axial zone size of the target's fine part
+    z_fine = -graded(fine_depth, h_z, h_z)
+    z_deep = -fine_depth - graded(DEPTH - fine_depth, h_z, spec["h_far"] / 2.0)[1:]
     z_target = np.concatenate([z_deep[::-1], z_fine[::-1]])
     mesh.extrude("target", target_section, z_target, lambda z: R_FINE,
                  dict(xsym="xsym", ysym="ysym", outer="target_side", bottom="target_bottom",
