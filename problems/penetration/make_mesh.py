@@ -5,8 +5,10 @@ needed). SI units (m). Usage:
 
     make_mesh.py [--level coarse|fine] [-o FILE]
 
-coarse -> penetration_coarse.msh, fine (1.5x the resolution in every
-direction) -> penetration_fine.msh, next to this script.
+coarse -> penetration_coarse.msh, fine (the long deck's: 1.5x the target's
+and the rod's axial resolution, 2x the rod's cross-section) ->
+penetration_fine.msh, next to this script. The levels axis06, axis04,
+axis04z12 and axis are the target-resolution study of README.md.
 
 Geometry (README.md): quarter model x >= 0, y >= 0.
 * Rod (physical volume `rod`): radius a = 3.555 mm (7.11 mm diameter), tangent
