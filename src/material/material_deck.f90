@@ -39,7 +39,7 @@ module material_deck
       key_t("gamma", "r", "required for ideal_gas", "", &
       "ratio of specific heats, > 1"), &
       key_t("library", "c", "''", "", &
-      "built-in data set (impact3d --materials): al6061, cu_ofhc, cu_taylor, ss304, be_verney, wha, ti6al4v, steel_1006"), &
+      "built-in data set; impact3d --materials lists them with their values and sources"), &
       key_t("rho0", "r", "from library", "density", &
       "reference density"), &
       key_t("c0", "r", "from library", "velocity", &

@@ -49,7 +49,8 @@ module material_flow_stress
   !> Names accepted by sg_set.
   character(len=*), parameter, public :: SG_SET_NAMES = 'al6061, cu_ofhc, cu_taylor, ss304'
   !> Names accepted by jc_set.
-  character(len=*), parameter, public :: JC_SET_NAMES = 'cu_ofhc, wha, steel_1006'
+  character(len=*), parameter, public :: JC_SET_NAMES = 'al6061, cu_ofhc, wha, steel_1006, '// &
+      'steel_4340'
 
   !> Steinberg-Guinan parameters (cm-g-us-Mbar, K). The defaults mean unset.
   type, public :: steinberg_guinan_t
@@ -211,8 +212,10 @@ contains
 
   !> Named Johnson-Cook set: 'cu_ofhc' (OFHC copper, Johnson & Cook 1983: A = 90 MPa,
   !> B = 292 MPa, n = 0.31, C = 0.025, m = 1.09, Tm = 1356 K, with their reference
-  !> rate 1/s, density 8.96 g/cm^3 and specific heat 383 J/(kg K)). Any other name
-  !> gives the unset default (a = b = 0); valid names are JC_SET_NAMES.
+  !> rate 1/s, density 8.96 g/cm^3 and specific heat 383 J/(kg K)), 'wha', 'steel_1006',
+  !> 'al6061' (6061-T6) and 'steel_4340' (VAR 4340 at Rc 38), sources at each case and
+  !> in docs/problems.md. Any other name gives the unset default (a = b = 0); valid
+  !> names are JC_SET_NAMES.
   pure function jc_set(name) result(m)
     character(len=*), intent(in) :: name !< set name, one of JC_SET_NAMES
     type(johnson_cook_t) :: m
@@ -229,6 +232,18 @@ contains
       ! Johnson & Cook (1983), 1006 steel: recalled values.
       m = johnson_cook_t(a=350.0e-5_rk, b=275.0e-5_rk, n=0.36_rk, c=0.022_rk, m=1.00_rk, &
           tm=1811.0_rk, tr=298.0_rk, eps_dot0=1.0e-6_rk, cv=0.452e-5_rk, rho0=7.89_rk)
+    case ('al6061')
+      ! 6061-T6: the set of the secondary literature (A = 324 MPa, B = 114 MPa,
+      ! n = 0.42, C = 0.002, m = 1.34, Tm = 925 K; recalled, no primary source
+      ! reached), cv and rho0 those of sg_set('al6061').
+      m = johnson_cook_t(a=324.0e-5_rk, b=114.0e-5_rk, n=0.42_rk, c=0.002_rk, m=1.34_rk, &
+          tm=925.0_rk, tr=298.0_rk, eps_dot0=1.0e-6_rk, cv=0.90e-5_rk, rho0=2.703_rk)
+    case ('steel_4340')
+      ! VAR 4340 at Rc 38 (the rods of Piekutowski et al. 1999): A = their yield,
+      ! 1140 MPa; B, n, C, m, Tm and cp of Johnson & Cook's 4340 at Rc 30 (B = 510
+      ! MPa, n = 0.26, C = 0.014, m = 1.03, Tm = 1793 K, 477 J/(kg K); recalled).
+      m = johnson_cook_t(a=1140.0e-5_rk, b=510.0e-5_rk, n=0.26_rk, c=0.014_rk, m=1.03_rk, &
+          tm=1793.0_rk, tr=298.0_rk, eps_dot0=1.0e-6_rk, cv=0.477e-5_rk, rho0=7.83_rk)
     case default
       m = johnson_cook_t()
     end select

@@ -13,11 +13,11 @@ module material_table
   public :: material_library_source
 
   !> The built-in data sets, in the order `impact3d --materials` lists them.
-  character(len=*), parameter, public :: LIBRARY_NAMES(8) = [character(len=12) :: 'al6061', &
-      'cu_ofhc', 'cu_taylor', 'ss304', 'be_verney', 'wha', 'ti6al4v', 'steel_1006']
+  character(len=*), parameter, public :: LIBRARY_NAMES(9) = [character(len=12) :: 'al6061', &
+      'cu_ofhc', 'cu_taylor', 'ss304', 'be_verney', 'wha', 'ti6al4v', 'steel_1006', 'steel_4340']
   !> The same as one line, for messages.
   character(len=*), parameter, public :: LIBRARY_LIST = 'al6061, cu_ofhc, cu_taylor, ss304, '// &
-      'be_verney, wha, ti6al4v, steel_1006'
+      'be_verney, wha, ti6al4v, steel_1006, steel_4340'
 
   integer, parameter, public :: EOS_IDEAL_GAS = 1, EOS_MIE_GRUNEISEN = 2
   integer, parameter, public :: STRENGTH_NONE = 0, STRENGTH_ELASTIC_PLASTIC = 1
@@ -163,7 +163,9 @@ contains
   !> to the Taylor slow shot of Eakins & Thadhani, this project; see
   !> material_flow_stress, sg_set), 'ss304' (304 stainless steel: recalled values,
   !> still to be checked against a primary source), 'be_verney' (beryllium of the
-  !> Verney problem). found is false for any other name.
+  !> Verney problem), and the sets with values from several sources named at each
+  !> ('wha', 'ti6al4v', 'steel_1006', 'steel_4340'; material_library_source).
+  !> found is false for any other name.
   subroutine material_library(name, mg, shear, yield, found)
     character(len=*), intent(in) :: name
     type(mie_gruneisen_t), intent(inout) :: mg
@@ -212,6 +214,15 @@ contains
       mg = mie_gruneisen_t(rho0=7.89_rk, c0=0.4569_rk, s1=1.49_rk, gamma0=2.17_rk, b=0.0_rk)
       shear = 0.80_rk
       yield = 0.0035_rk
+    case ('steel_4340')
+      ! VAR 4340 at Rc 38, the rods of Piekutowski et al. (1999): rho0 their
+      ! 7830 kg/m^3; c0 = sqrt(K/rho0) and G from handbook E = 205 GPa, nu =
+      ! 0.29; gamma0 = 3 alpha K/(rho0 cp) with alpha = 12.3e-6 /K, cp = 477
+      ! J/(kg K); s1 the steels' recalled Hugoniot slope (unverified); b = 0;
+      ! Y0 = the rods' yield, 1140 MPa (= the Johnson-Cook A of jc_set).
+      mg = mie_gruneisen_t(rho0=7.83_rk, c0=0.4558_rk, s1=1.49_rk, gamma0=1.61_rk, b=0.0_rk)
+      shear = 0.795_rk
+      yield = 0.0114_rk
     case default
       found = .false.
       shear = 0.0_rk
@@ -225,7 +236,12 @@ contains
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: text
     select case (name)
-    case ('al6061', 'cu_ofhc')
+    case ('al6061')
+      text = 'Steinberg, UCRL-MA-106439 (1991, Change 1 1996), EOS and Steinberg-Guinan rows; '// &
+          'checked against a published transcription of the report. Johnson-Cook A = 324, '// &
+          'B = 114 MPa, n = 0.42, C = 0.002, m = 1.34, Tm = 925 K: the 6061-T6 set of the '// &
+          'secondary literature (recalled; no primary source reached); cp 0.90 J/(g K) (CRC, Al)'
+    case ('cu_ofhc')
       text = 'Steinberg, UCRL-MA-106439 (1991, Change 1 1996), EOS and Steinberg-Guinan rows; '// &
           'checked against a published transcription of the report'
     case ('cu_taylor')
@@ -249,6 +265,14 @@ contains
       text = 'rho0, Johnson-Cook A, B, n, C, m, Tm, cp: Johnson & Cook (1983), 1006 steel '// &
           '(recalled, unverified); c0, s1, gamma0: values in common use for mild steel '// &
           '(primary source unconfirmed); G: E = 207 GPa, nu = 0.29 (handbook)'
+    case ('steel_4340')
+      text = 'VAR 4340, Rc 38 (Piekutowski et al. 1999 rods): rho0 7830 kg/m^3 and Y0 = '// &
+          'Johnson-Cook A = 1140 MPa from that paper; c0 = sqrt(K/rho0), G = 79.5 GPa and '// &
+          'gamma0 = 3 alpha K/(rho0 cp) = 1.61 derived from handbook E = 205 GPa, nu = 0.29, '// &
+          'alpha = 12.3e-6/K, cp = 477 J/(kg K); s1 = 1.49: the steels'' Hugoniot slope '// &
+          '(recalled Marsh 1980 fits, unverified); b = 0; Johnson-Cook B = 510 MPa, n = 0.26, '// &
+          'C = 0.014, m = 1.03, Tm = 1793 K, cp: Johnson & Cook (1983/1985) 4340 at Rc 30 '// &
+          '(recalled, unverified), A raised to the Rc 38 yield'
     case default
       text = ''
     end select

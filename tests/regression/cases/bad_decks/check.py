@@ -407,7 +407,7 @@ def build_cases():
     c.append(Case("material_jc_no_library",
                   mat(mg + ", strength = 'johnson_cook', shear_modulus = 0.3"),
                   ["&material(1): %s: required for strength = 'johnson_cook' (or a library "
-                   "with Johnson-Cook data: cu_ofhc, wha, steel_1006)" % k
+                   "with Johnson-Cook data: al6061, cu_ofhc, wha, steel_1006, steel_4340)" % k
                    for k in ["jc_a", "jc_b", "jc_n", "jc_c", "jc_m", "t_melt", "cv"]],
                   min_errors=7))
     c.append(Case("material_jc_shear_missing",
