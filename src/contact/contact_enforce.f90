@@ -52,7 +52,7 @@ module contact_enforce
   use, intrinsic :: iso_fortran_env, only: output_unit
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
-      surface_node_index, set_names_of
+      surface_node_index, set_names_of, surface_renumbered
   use contact_records, only: records_t, take, send_records
   use contact_search, only: find_key
   use contact_state, only: RIGID_MASS_FACTOR, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, &
@@ -328,8 +328,8 @@ contains
     ! (one owner each, zero elsewhere: the sums are the owners' values)
     xc = packed(4:6, :)
     do k = 1, ct%npair
-      call renumber(raw_a(k), ct%pairs(k)%all_a)
-      call renumber(raw_b(k), ct%pairs(k)%all_b)
+      call surface_renumbered(raw_a(k), ct%all_gid, xc, ct%pairs(k)%all_a)
+      call surface_renumbered(raw_b(k), ct%all_gid, xc, ct%pairs(k)%all_b)
       ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
           median_size(xc, ct%pairs(k)%all_b))
     end do
@@ -384,21 +384,6 @@ contains
       end associate
     end do
 
-  contains
-
-    subroutine renumber(raw, surf)
-      type(contact_surface_t), intent(in) :: raw
-      type(contact_surface_t), intent(inout) :: surf
-      integer(ik), allocatable :: segments(:, :)
-      integer :: s, c
-      allocate(segments(4, raw%nseg))
-      do s = 1, raw%nseg
-        do c = 1, 4
-          segments(c, s) = int(find_key(ct%all_gid, int(raw%segments(c, s), i8)), ik)
-        end do
-      end do
-      call surface_from_segments(segments, raw%segment_id, xc, surf)
-    end subroutine renumber
 
   end subroutine index_surfaces
 

@@ -21,8 +21,8 @@ module contact_monitor
   use core_exact_sum, only: exact_sum_t, exact_value
   use core_status, only: status_t
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-  use core_sort, only: sort_unique
-  use contact_surface, only: contact_surface_t, surface_from_segments
+  use core_sort, only: sort_unique, sorted_find
+  use contact_surface, only: contact_surface_t, surface_renumbered
   use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
   use contact_state, only: contact_spec_t, interface_t, contact_t, contact_method_t, &
       initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN
@@ -181,7 +181,7 @@ contains
         end do
         ! Every copy of a moved node moves (owned and ghost alike).
         do n = 1, mesh%nnode
-          i = ascending_find(gid, mesh%node_gid(n))
+          i = sorted_find(gid, mesh%node_gid(n))
           if (i > 0) x(:, n) = xc(:, i)
         end do
         call both_sides()
@@ -296,50 +296,15 @@ contains
     allocate(flat(3 * size(gid)))
     flat = 0.0_rk
     do n = 1, mesh%nnode_owned
-      i = ascending_find(gid, mesh%node_gid(n))
+      i = sorted_find(gid, mesh%node_gid(n))
       if (i > 0) flat(3 * i - 2:3 * i) = x(:, n)
     end do
     call par_sum_array(flat)
     xc = reshape(flat, [3, size(gid)])
-    call renumbered(ga, sa)
-    call renumbered(gb, sb)
-
-  contains
-
-    subroutine renumbered(g, s)
-      type(contact_surface_t), intent(in) :: g
-      type(contact_surface_t), intent(inout) :: s
-      integer(ik), allocatable :: segments(:, :)
-      integer :: j, c
-      allocate(segments(4, g%nseg))
-      do j = 1, g%nseg
-        do c = 1, 4
-          segments(c, j) = int(ascending_find(gid, int(g%segments(c, j), i8)), ik)
-        end do
-      end do
-      call surface_from_segments(segments, g%segment_id, xc, s)
-    end subroutine renumbered
-
+    call surface_renumbered(ga, gid, xc, sa)
+    call surface_renumbered(gb, gid, xc, sb)
   end subroutine surface_positions
 
-  !> Index of key in the ascending array keys, 0 if absent.
-  pure integer function ascending_find(keys, key) result(i)
-    integer(i8), intent(in) :: keys(:)
-    integer(i8), intent(in) :: key
-    integer :: low, high
-    low = 1
-    high = size(keys)
-    do while (low <= high)
-      i = (low + high) / 2
-      if (keys(i) == key) return
-      if (keys(i) < key) then
-        low = i + 1
-      else
-        high = i - 1
-      end if
-    end do
-    i = 0
-  end function ascending_find
 
   !> The audit of every interface at positions x (local mesh nodes; the
   !> owned ones are read): history columns, the per-node smallest gap for

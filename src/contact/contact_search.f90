@@ -48,7 +48,7 @@
 !> of segments or pairs.
 module contact_search
   use core_kinds, only: rk, ik, i8
-  use core_sort, only: sort_order, sort_values
+  use core_sort, only: sort_order, sort_values, find_key => sorted_find
   use contact_surface, only: contact_surface_t, edge_end
   use contact_geometry, only: quad_unit_normal
   implicit none
@@ -385,25 +385,6 @@ contains
     pairs(:, npair) = [node, segment]
   end subroutine append_pair
 
-  !> Index of key in the ascending array keys, 0 if absent.
-  pure integer function find_key(keys, key) result(i)
-    integer(i8), intent(in) :: keys(:)
-    integer(i8), intent(in) :: key
-    integer :: low, high
-    low = 1
-    high = size(keys)
-    do while (low <= high)
-      i = (low + high) / 2
-      if (keys(i) == key) then
-        return
-      else if (keys(i) < key) then
-        low = i + 1
-      else
-        high = i - 1
-      end if
-    end do
-    i = 0
-  end function find_key
 
   !> Closest point of node q on the bilinear segment p (see the module notes).
   pure subroutine closest_point(p, q, xi, eta, gap, normal, location, local)

@@ -18,7 +18,7 @@
 !> the neighbour is the lowest-numbered other one.
 module contact_surface
   use core_kinds, only: rk, ik, i8
-  use core_sort, only: sort_values, sort_unique
+  use core_sort, only: sort_values, sort_unique, sorted_find
   use core_status, only: status_t
   use mesh_geometry, only: HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
@@ -27,6 +27,7 @@ module contact_surface
   implicit none
   private
   public :: surface_build, surface_from_segments, surface_update_edges, set_names_of
+  public :: surface_renumbered
   public :: contact_surface_rebuild
   public :: surface_node_index, edge_end
   public :: add_ring, local_surface, master_neighbourhood, keep_lower_side, nodal_areas
@@ -234,7 +235,7 @@ contains
     allocate(local(4, nseg))
     do s = 1, nseg
       do k = 1, 4
-        local(k, s) = ascending_index(ids, int(segments(k, s), i8))
+        local(k, s) = sorted_find(ids, int(segments(k, s), i8))
       end do
     end do
     ! Node -> segment CSR; segments are visited in order, so each list ascends.
@@ -286,24 +287,25 @@ contains
 
   end subroutine surface_from_segments
 
-  !> Index of key in the ascending array keys, 0 if absent.
-  pure integer function ascending_index(keys, key) result(i)
-    integer(i8), intent(in) :: keys(:)
-    integer(i8), intent(in) :: key
-    integer :: low, high
-    low = 1
-    high = size(keys)
-    do while (low <= high)
-      i = (low + high) / 2
-      if (keys(i) == key) return
-      if (keys(i) < key) then
-        low = i + 1
-      else
-        high = i - 1
-      end if
+
+  !> The surface raw (global node ids) with its nodes numbered by their
+  !> place in the ascending ids (every node of raw among them); convexity
+  !> from x, indexed the same way.
+  subroutine surface_renumbered(raw, ids, x, surf)
+    type(contact_surface_t), intent(in) :: raw
+    integer(i8), intent(in) :: ids(:) !< ascending global node ids
+    real(rk), intent(in) :: x(:, :) !< (3, size(ids))
+    type(contact_surface_t), intent(inout) :: surf
+    integer(ik), allocatable :: segments(:, :)
+    integer :: s, c
+    allocate(segments(4, raw%nseg))
+    do s = 1, raw%nseg
+      do c = 1, 4
+        segments(c, s) = int(sorted_find(ids, int(raw%segments(c, s), i8)), ik)
+      end do
     end do
-    i = 0
-  end function ascending_index
+    call surface_from_segments(segments, raw%segment_id, x, surf)
+  end subroutine surface_renumbered
 
   !> Recompute the convex flag of every edge from the current positions.
   subroutine surface_update_edges(surf, x)

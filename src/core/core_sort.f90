@@ -7,12 +7,13 @@
 !>   integer) ascending, or the columns of a 64-bit key(:, :)
 !>   lexicographically;
 !> * sort_values(a): a (real, integer or 64-bit integer) sorted in place;
-!> * sort_unique(a): sorted with repeats dropped (64-bit integers).
+!> * sort_unique(a): sorted with repeats dropped (64-bit integers);
+!> * sorted_find(keys, key): the index of key in ascending keys, 0 if absent.
 module core_sort
   use core_kinds, only: rk, i8
   implicit none
   private
-  public :: sort_order, sort_values, sort_unique
+  public :: sort_order, sort_values, sort_unique, sorted_find
 
   !> Below this many items insertion beats merging.
   integer, parameter :: SMALL = 16
@@ -225,5 +226,24 @@ contains
     end do
     a = a(:j)
   end subroutine sort_unique
+
+  !> Index of key in the ascending array keys (binary search), 0 if absent.
+  pure integer function sorted_find(keys, key) result(i)
+    integer(i8), intent(in) :: keys(:)
+    integer(i8), intent(in) :: key
+    integer :: low, high
+    low = 1
+    high = size(keys)
+    do while (low <= high)
+      i = (low + high) / 2
+      if (keys(i) == key) return
+      if (keys(i) < key) then
+        low = i + 1
+      else
+        high = i - 1
+      end if
+    end do
+    i = 0
+  end function sorted_find
 
 end module core_sort

@@ -26,7 +26,7 @@
 !> that order, the faces of each block face with k slowest and i fastest.
 module mesh_blocks
   use core_kinds, only: rk, ik, i8
-  use core_sort, only: sort_order, sort_unique
+  use core_sort, only: sort_order, sorted_find
   use mesh_geometry, only: hex_volume
   use mesh_global, only: global_mesh_t, NAME_LEN
   use mesh_range, only: mesh_range_t, range_grow_faces
@@ -232,11 +232,11 @@ contains
     integer(i8) :: first
     integer :: m
     first = r
-    m = find(part%dup, r)
+    m = sorted_find(part%dup, r)
     if (m > 0) first = part%dup_first(m)
     id = first - below(part%dup, first)
     from = first
-    m = find(part%lead, first)
+    m = sorted_find(part%lead, first)
     if (m > 0) from = part%lead_from(m)
   end subroutine node_of
 
@@ -462,23 +462,6 @@ contains
     range%nface = pos
   end subroutine range_add_part
 
-  !> Index of key in the ascending keys, 0 if absent.
-  pure integer function find(keys, key) result(i)
-    integer(i8), intent(in) :: keys(:), key
-    integer :: low, high
-    low = 1
-    high = size(keys)
-    do while (low <= high)
-      i = (low + high) / 2
-      if (keys(i) == key) return
-      if (keys(i) < key) then
-        low = i + 1
-      else
-        high = i - 1
-      end if
-    end do
-    i = 0
-  end function find
 
   !> How many of the ascending keys are below key.
   pure integer(i8) function below(keys, key)
