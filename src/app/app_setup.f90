@@ -21,6 +21,7 @@ module app_setup
       BC_SYMMETRY, BC_WALL
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
+  use hydro_erosion, only: erosion_allocate
   use contact_enforce, only: contact_t, contact_setup, side_context_t
   use contact_monitor, only: contact_initial
   use contact_state, only: initial_offsets_t
@@ -487,6 +488,7 @@ contains
     call state_init(state, mesh%nnode, mesh%nzone, config%hydro%hourglass == HOURGLASS_STIFFNESS, &
         any(config%materials%strength /= STRENGTH_NONE), &
         hourglass=config%hydro%hourglass /= HOURGLASS_NONE)
+    call erosion_allocate(mesh, state, config%failures, config%erosion)
     state%node_position = coordinates
     allocate(zone_material(mesh%nzone))
     do z = 1, mesh%nzone

@@ -11,6 +11,8 @@ module solver_step
   use hydro_boundary, only: boundary_t
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux
+  use material_failure, only: failure_t, erosion_spec_t
+  use hydro_erosion, only: erosion_step
   use contact_enforce, only: contact_t, contact_apply, contact_work_update
   use contact_monitor, only: contact_audit_run, contact_step_end, contact_audit_due
   use parallel_env, only: par_sum_exact
@@ -26,21 +28,26 @@ contains
   !> interfaces' step diagnostics, time landed on the dump time or t_end,
   !> cycle count, the stable step kept for the growth limit; then the contact
   !> audit when a global search ran or a dump ends the cycle. Sections 'step'
-  !> (with 'halo' and 'contact' within) and 'audit' of timers.
+  !> (with 'halo' and 'contact' within) and 'audit' of timers. With failure
+  !> or erosion the cycle ends with erosion_step (spall, the erosion decision,
+  !> the lists).
   subroutine solver_cycle(opt, materials, mesh, state, mz, bc, ct, plan, dt, bad_half, bad, &
-      timers)
+      timers, failures, erosion)
     type(hydro_options_t), intent(in) :: opt
     type(material_t), intent(in) :: materials(:)
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
-    type(material_zones_t), intent(in) :: mz
+    type(material_zones_t), intent(inout) :: mz
     type(boundary_t), intent(inout) :: bc
     type(contact_t), intent(inout) :: ct
     type(schedule_t), intent(in) :: plan
     real(rk), intent(in) :: dt
     integer, intent(out) :: bad_half, bad !< local zones with bad volume (0 = none)
     type(timers_t), intent(inout) :: timers
+    type(failure_t), intent(in) :: failures(:) !< per material
+    type(erosion_spec_t), intent(in) :: erosion !< &erosion
     type(exact_sum_t) :: work(2) !< boundary, contact work of the step
+    integer :: eroded
     call timers%start('step')
     state%dt = dt
     ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
@@ -49,8 +56,10 @@ contains
       bad_half = 0
     else
       call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
-          work(1), work(2), timers)
+          work(1), work(2), timers, failures)
     end if
+    if (allocated(state%zone_damage) .or. allocated(state%zone_alive)) call erosion_step(mesh, &
+        state, mz, failures, erosion, opt, bad_half, bad, eroded)
     ! Exact sums: the works, and so the history, do not depend on the rank count.
     call par_sum_exact(work)
     state%boundary_work = state%boundary_work + exact_value(work(1))
@@ -79,7 +88,7 @@ contains
   !> forces at t^n+1/2, contact on the final update (its work), final
   !> velocities, positions, energies, deviatoric stress and zone state.
   subroutine solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
-      work, contact_work, timers)
+      work, contact_work, timers, failures)
     type(hydro_options_t), intent(in) :: opt
     type(material_t), intent(in) :: materials(:)
     type(mesh_t), intent(inout) :: mesh
@@ -92,6 +101,7 @@ contains
     type(exact_sum_t), intent(inout) :: work !< + boundary work of the step (local terms)
     type(exact_sum_t), intent(inout) :: contact_work !< + contact work of the step (local terms)
     type(timers_t), intent(inout) :: timers !< sections 'halo' and 'contact'
+    type(failure_t), intent(in), optional :: failures(:) !< per material: damage models
     logical :: strength
 
     call save_step_start(mesh, state)
@@ -158,7 +168,8 @@ contains
     if (strength) then
       state%zone_stress_half = state%zone_stress
       call hydro_strength_update(mesh, state, materials, mz, &
-          state%node_velocity_half, dt, state%zone_stress_half, state%zone_stress, .true.)
+          state%node_velocity_half, dt, state%zone_stress_half, state%zone_stress, .true., &
+          failures)
     end if
     if (opt%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = &
         state%zone_hourglass_new
