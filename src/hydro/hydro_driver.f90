@@ -354,11 +354,14 @@ contains
               + 2.0_rk * (to(4, z)**2 + to(5, z)**2 + to(6, z)**2)))
           state%zone_plastic_work(z) = state%zone_plastic_work(z) + sbar * dp * &
               state%zone_volume(z)
-          ! Damage D += dp / eps_f(sigma*, epsdot*, T*); failed at 1.
-          if (damage .and. sbar > 0.0_rk) state%zone_damage(z) = min(1.0_rk, &
-              state%zone_damage(z) + dp * failure_damage_rate(failures(m), &
-              state%zone_pressure(z), sbar, rate, &
-              failure_homologous(materials(m), state%zone_energy(z))))
+          ! Damage D += dp / eps_f(sigma*, epsdot*, T*); at 1 the zone has
+          ! failed and drops its deviatoric stress now.
+          if (damage .and. sbar > 0.0_rk) then
+            state%zone_damage(z) = min(1.0_rk, state%zone_damage(z) + dp * &
+                failure_damage_rate(failures(m), state%zone_pressure(z), sbar, rate, &
+                failure_homologous(materials(m), state%zone_energy(z))))
+            if (state%zone_damage(z) >= 1.0_rk) to(:, z) = 0.0_rk
+          end if
         end if
       end do
     end do
