@@ -656,8 +656,6 @@ contains
       end if
       i = j + 1
     end do
-
-
   end subroutine read_erosion
 
 end module material_deck
