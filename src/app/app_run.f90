@@ -12,9 +12,9 @@ module app_run
   use hydro_boundary, only: boundary_t
   use hydro_driver, only: material_zones_t, hydro_zone_update
   use hydro_erosion, only: erosion_restore
-  use contact_enforce, only: contact_t, contact_report
+  use contact_enforce, only: contact_t, contact_report, side_context_t
   use contact_monitor, only: contact_audit_due
-  use solver_step, only: solver_cycle, solver_audit
+  use solver_step, only: solver_cycle, solver_audit, solver_contact_refresh
   use solver_schedule, only: schedule_t
   use solver_fault, only: inject_nan, inject_tangle
   use solver_control, only: control_t, control_reduce, control_stop_request, &
@@ -29,7 +29,7 @@ module app_run
       timing_report, halo_report, kinetic_stop_message
   use parallel_env, only: par_sum, par_rank, par_bcast
   use app_provenance, only: restart_deck_check
-  use app_setup, only: setup_run
+  use app_setup, only: setup_run, setup_sides
   use app_summary, only: model_speed_check, model_summary
   implicit none
   private
@@ -124,6 +124,11 @@ contains
     if (.not. allocated(state%node_position_initial)) &
         state%node_position_initial = state%node_position
     call erosion_restore(mesh, state, mz, config%erosion)
+    ! A restart after an erosion: the contact surfaces of the live zones.
+    if (allocated(state%zone_alive) .and. len_trim(restart) > 0) then
+      if (par_sum(count(state%zone_alive(1:mesh%nzone_owned) == 0.0_rk)) > 0) &
+          call solver_contact_refresh(mesh, state, bc, ct, setup_sides(config), timers)
+    end if
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
     call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl)
@@ -203,8 +208,10 @@ contains
     character(len=8) :: dump_why
     type(eta_t) :: eta
     type(schedule_t) :: plan
+    type(side_context_t) :: sides
 
     code = EXIT_OK
+    sides = setup_sides(config)
     wall_start = wall_time()
     call eta%add(wall_start, state%time)
     wall_status = wall_start
@@ -255,7 +262,7 @@ contains
       if (state%cycle + 1 == config%fault_cycle .and. config%fault_kind == 'tangle') &
           call inject_tangle(mesh, state)
       call solver_cycle(config%hydro, config%materials, mesh, state, mz, bc, ct, plan, dt, &
-          bad_half, bad, timers, config%failures, config%erosion)
+          bad_half, bad, timers, config%failures, config%erosion, sides)
       if (ct%stop_run) then
         call audit_stop_message()
         call output_history(config, mesh, state, ct, timers)

@@ -34,7 +34,7 @@ module app_setup
   use parallel_route, only: par_max_i8
   implicit none
   private
-  public :: setup_run, setup_mesh, setup_state, assign_blocks
+  public :: setup_run, setup_mesh, setup_state, assign_blocks, setup_sides
 
 contains
 
@@ -73,11 +73,7 @@ contains
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, coordinates, bc, timers, status)
     if (.not. status%ok()) return
-    ! Surfaces given by blocks: the deck's blocks, and the face sets that
-    ! never form one (symmetry planes, rigid walls).
-    sides%block_names = config%blocks(:)%name
-    sides%closed_sets = pack(config%boundaries(:)%set, config%boundaries(:)%kind == BC_SYMMETRY &
-        .or. config%boundaries(:)%kind == BC_WALL)
+    sides = setup_sides(config)
     if (size(config%contacts) > 0) then
       call timers%start('contact set-up')
       call contact_initial(config%contacts, global, mesh, bc%symmetry_planes, offsets, status, &
@@ -471,6 +467,17 @@ contains
     end subroutine check_list
 
   end subroutine check_contacts
+
+  !> Surfaces given by blocks: the deck's blocks, and the face sets that
+  !> never form one (symmetry planes, rigid walls); set-up and the contact
+  !> refresh after an erosion take the same.
+  function setup_sides(config) result(sides)
+    type(config_t), intent(in) :: config
+    type(side_context_t) :: sides
+    sides%block_names = config%blocks(:)%name
+    sides%closed_sets = pack(config%boundaries(:)%set, config%boundaries(:)%kind == BC_SYMMETRY &
+        .or. config%boundaries(:)%kind == BC_WALL)
+  end function setup_sides
 
   !> Allocate the state and apply the initial conditions (positions of the
   !> local nodes given); nodal masses are the sums of corner masses m_z / 8.

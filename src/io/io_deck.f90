@@ -10,6 +10,7 @@ module io_deck
   use core_status, only: status_t
   use core_keys, only: key_t, key_names
   use core_text, only: join
+  use core_names, only: name_hint
   use core_units, only: UNITS_CGSUS
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, value_problem, &
       closest_name, LINE_LEN, KEY_LEN
@@ -247,7 +248,8 @@ contains
     if (len_trim(config%stop_block) > 0) then
       config%stop_block_index = findloc(config%blocks%name, config%stop_block, dim=1)
       if (config%stop_block_index == 0) call status%add('&control: stop_block: '''// &
-          trim(config%stop_block)//''' is not a block of this deck')
+          trim(config%stop_block)//''' is not a block of this deck'// &
+          name_hint(config%stop_block, config%blocks%name))
     end if
     ! The single-stage scheme is for gas dynamics: its position update is not
     ! the one the contact, the wall and the strength update assume.

@@ -253,12 +253,16 @@ contains
     type(config_t), intent(in) :: config
     type(state_t), intent(in) :: state
     real(rk), intent(in) :: kinetic !< the block's kinetic energy now
+    character(len=16) :: now, initial, t
     if (par_rank() /= 0) return
+    write(now, '(es12.5)') kinetic
+    write(initial, '(es12.5)') state%stop_kinetic_initial
+    write(t, '(es12.5)') state%time
     write(output_unit, '(a,i0,a)') 'impact3d: stopping at cycle ', state%cycle, ', t = '// &
-        trim(to_text(state%time))//': the kinetic energy of block '''// &
-        trim(config%stop_block)//''' ('//trim(to_text(kinetic))//') fell below '// &
-        'stop_kinetic_fraction = '//trim(to_text(config%stop_kinetic_fraction))// &
-        ' of its initial value ('//trim(to_text(state%stop_kinetic_initial))//')'
+        trim(adjustl(t))//': the kinetic energy of block '''//trim(config%stop_block)// &
+        ''' ('//trim(adjustl(now))//') fell below stop_kinetic_fraction = '// &
+        fixed_text(config%stop_kinetic_fraction, 4)//' of its initial value ('// &
+        trim(adjustl(initial))//')'
     flush(output_unit)
   end subroutine kinetic_stop_message
 

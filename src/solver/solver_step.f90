@@ -8,18 +8,19 @@ module solver_step
   use mesh_local, only: mesh_t
   use material_table, only: material_t
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
-  use hydro_boundary, only: boundary_t
+  use hydro_boundary, only: boundary_t, boundary_prescribed
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux
   use material_failure, only: failure_t, erosion_spec_t
   use hydro_erosion, only: erosion_step
-  use contact_enforce, only: contact_t, contact_apply, contact_work_update
+  use contact_enforce, only: contact_t, contact_apply, contact_work_update, &
+      contact_surface_refresh, side_context_t
   use contact_monitor, only: contact_audit_run, contact_step_end, contact_audit_due
   use parallel_env, only: par_sum_exact
   use solver_schedule, only: schedule_t
   implicit none
   private
-  public :: solver_cycle, solver_lagrange_step, solver_audit
+  public :: solver_cycle, solver_lagrange_step, solver_audit, solver_contact_refresh
 
 contains
 
@@ -30,9 +31,10 @@ contains
   !> audit when a global search ran or a dump ends the cycle. Sections 'step'
   !> (with 'halo' and 'contact' within) and 'audit' of timers. With failure
   !> or erosion the cycle ends with erosion_step (spall, the erosion decision,
-  !> the lists).
+  !> the lists); after an erosion anywhere the contact surfaces given by
+  !> blocks follow the live zones (solver_contact_refresh).
   subroutine solver_cycle(opt, materials, mesh, state, mz, bc, ct, plan, dt, bad_half, bad, &
-      timers, failures, erosion)
+      timers, failures, erosion, sides)
     type(hydro_options_t), intent(in) :: opt
     type(material_t), intent(in) :: materials(:)
     type(mesh_t), intent(inout) :: mesh
@@ -46,6 +48,7 @@ contains
     type(timers_t), intent(inout) :: timers
     type(failure_t), intent(in) :: failures(:) !< per material
     type(erosion_spec_t), intent(in) :: erosion !< &erosion
+    type(side_context_t), intent(in) :: sides !< blocks and closed sets (contact surfaces)
     type(exact_sum_t) :: work(2) !< boundary, contact work of the step
     integer :: eroded
     call timers%start('step')
@@ -58,18 +61,41 @@ contains
       call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
           work(1), work(2), timers, failures)
     end if
-    if (allocated(state%zone_damage) .or. allocated(state%zone_alive)) call erosion_step(mesh, &
-        state, mz, failures, erosion, opt, bad_half, bad, eroded)
     ! Exact sums: the works, and so the history, do not depend on the rank count.
     call par_sum_exact(work)
     state%boundary_work = state%boundary_work + exact_value(work(1))
     call contact_step_end(ct, exact_value(work(2)))
+    eroded = 0
+    if (allocated(state%zone_damage) .or. allocated(state%zone_alive)) call erosion_step(mesh, &
+        state, mz, failures, erosion, opt, bad_half, bad, eroded)
+    if (eroded > 0) call solver_contact_refresh(mesh, state, bc, ct, sides, timers)
     state%time = plan%land(state%time, dt)
     state%cycle = state%cycle + 1
     state%dt_previous = plan%dt_stable
     call timers%stop('step')
     if (contact_audit_due(ct, plan%audit_due(state%cycle))) call solver_audit(ct, state, timers)
   end subroutine solver_cycle
+
+  !> After an erosion (or a restart that finds eroded zones): the contact
+  !> surfaces given by blocks rebuilt from the live zones (section
+  !> 'contact'); nothing without an interface. The surfaces' sizes,
+  !> sagittas and audit reach are taken on the positions at t = 0, as the
+  !> set-up takes them: so they depend on the live zones only, and a
+  !> restart, which rebuilds them from the dump's liveness, gets the same
+  !> (positions of the last erosion would not be in the dump). Collective.
+  subroutine solver_contact_refresh(mesh, state, bc, ct, sides, timers)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    type(boundary_t), intent(in) :: bc
+    type(contact_t), intent(inout) :: ct
+    type(side_context_t), intent(in) :: sides
+    type(timers_t), intent(inout) :: timers
+    if (ct%npair == 0) return
+    call timers%start('contact')
+    call contact_surface_refresh(ct, mesh, state%node_position_initial, state%node_mass, &
+        state%zone_alive > 0.0_rk, sides, boundary_prescribed(bc, size(state%node_mass)))
+    call timers%stop('contact')
+  end subroutine solver_contact_refresh
 
   !> The contact audit at x^n of the state (section 'audit' of timers); its
   !> gaps stay in the contact for the dumps. Nothing without an interface.
