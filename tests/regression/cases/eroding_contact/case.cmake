@@ -11,6 +11,9 @@ foreach(m dlm dam)
     --workdir ${WORK}/bitwise_eroding_${m} --deck ${CMAKE_CURRENT_LIST_DIR}/pen_${m}.nml
     --ranks 1 2 3 --history --history-except _force _pen_rms _dmom_x _dmom_y _dmom_z)
 endforeach()
+impact3d_regress(contact/eroding_distortion "regression;contact;solids"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/eroding_distortion
+  --method distortion --mpiexec ${MPIEXEC_EXECUTABLE} --np 1)
 impact3d_check(restart/eroding_dlm "regression;parallel;contact;solids" restart
   --workdir ${WORK}/restart_eroding_dlm --deck ${CMAKE_CURRENT_LIST_DIR}/pen_dlm.nml
   --np 1 --restart-np 2 --from-cycle 30)
