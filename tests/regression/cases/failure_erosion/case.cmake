@@ -23,3 +23,8 @@ impact3d_check(restart/erosion_after "regression;parallel;solids" restart
 impact3d_check(restart/kinetic_stop "regression;parallel;solids" restart
   --workdir ${WORK}/restart_kinetic_stop --deck ${CMAKE_CURRENT_LIST_DIR}/bar_stop.nml
   --np 1 --restart-np 2 --from-cycle 100 --history-bitwise)
+# The Johnson-Cook failure path with D = (0.05, 0.05, 0, 0, 0), eps_f = 0.1
+# exactly: dumps bitwise those of failure_strain = 0.1.
+impact3d_check(solids/failure_jc_constant "regression;solids" same
+  --workdir ${WORK}/failure_jc_constant --deck ${CMAKE_CURRENT_LIST_DIR}/bar_failure_jc.nml
+  --reference ${CMAKE_CURRENT_LIST_DIR}/bar_failure.nml --np 1)
