@@ -14,6 +14,9 @@ endforeach()
 impact3d_regress(contact/eroding_distortion "regression;contact;solids"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/eroding_distortion
   --method distortion --mpiexec ${MPIEXEC_EXECUTABLE} --np 1)
+impact3d_regress(contact/eroding_emptied "regression;contact;solids"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/eroding_emptied
+  --method emptied --mpiexec ${MPIEXEC_EXECUTABLE} --np 1)
 impact3d_check(restart/eroding_dlm "regression;parallel;contact;solids" restart
   --workdir ${WORK}/restart_eroding_dlm --deck ${CMAKE_CURRENT_LIST_DIR}/pen_dlm.nml
   --np 1 --restart-np 2 --from-cycle 30)

@@ -5,7 +5,10 @@ docs/design.md, "Surfaces given by blocks"). Usage:
 
   check.py EXE WORKDIR --method dlm|dam|distortion [--mpiexec mpirun --np 1]
 
-(distortion: pen_distortion.nml, DLM with &erosion volume_ratio = 0.97 in
+(emptied: pen_emptied.nml, DAM with an eroding projectile: every zone of
+the cube is eroded, its side of the contact ends empty, and the run goes on
+with the same checks, plus: steel_internal 0 at the end, 8 cube zones gone.
+distortion: pen_distortion.nml, DLM with &erosion volume_ratio = 0.97 in
 place of the failure model: one erosion event suffices, and every dump
 after it has every live zone of the block at V >= 0.97 V0, V0 from the
 first dump: a zone below would have been eroded at the end of that cycle.)
@@ -65,7 +68,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("exe")
     ap.add_argument("workdir")
-    ap.add_argument("--method", required=True, choices=["dlm", "dam", "distortion"])
+    ap.add_argument("--method", required=True, choices=["dlm", "dam", "distortion",
+                                                        "emptied"])
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--np", type=int, default=1)
     a = ap.parse_args()
@@ -87,6 +91,9 @@ def main():
     check("zones eroded in %d separate cycles (%d zones)" % (events, n[-1]), events >= need)
     if a.method == "distortion":
         distortion(wd)
+    if a.method == "emptied":
+        check("the cube is gone (steel_internal %.2e at the end)" % h["steel_internal"][-1],
+              h["steel_internal"][-1] == 0.0 and n[-1] >= 8)
     for side in ("a", "b"):
         worst = h["pt_audit_count_" + side].max()
         check("side %s: no node beyond the tolerance on any row (max count %d)"
