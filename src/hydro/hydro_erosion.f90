@@ -94,7 +94,11 @@ contains
         if (.not. (failures(m)%spall_strength > 0.0_rk)) cycle
         do i = mz%start(m), mz%start(m + 1) - 1
           z = mz%list(i)
-          if (state%zone_pressure(z) < -failures(m)%spall_strength) state%zone_damage(z) = 1.0_rk
+          if (.not. (state%zone_pressure(z) < -failures(m)%spall_strength)) cycle
+          ! Failed from now: no tension, no deviatoric stress.
+          state%zone_damage(z) = 1.0_rk
+          state%zone_pressure(z) = 0.0_rk
+          if (allocated(state%zone_stress)) state%zone_stress(:, z) = 0.0_rk
         end do
       end do
     end if

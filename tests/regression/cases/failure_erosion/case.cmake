@@ -2,7 +2,7 @@
 # failing at the plastic strain derived from its stretching; one zone eroded
 # with its mass and energy booked exactly and the balance at round-off; a
 # bar on a wall stopped by its kinetic energy at L / (2c)).
-foreach(c failure erosion stop)
+foreach(c failure erosion stop spall)
   impact3d_regress(solids/failure_${c} "regression;solids"
     ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/failure_${c} --case ${c}
     --mpiexec ${MPIEXEC_EXECUTABLE} --np 1)

@@ -2,7 +2,7 @@
 """Failure, erosion and the kinetic-energy stop (docs/user-guide.md, &material
 failure keys, &erosion, &control stop_block). Usage:
 
-  check.py EXE WORKDIR --case failure|erosion|stop [--mpiexec mpirun --np 1]
+  check.py EXE WORKDIR --case failure|erosion|stop|spall [--mpiexec mpirun --np 1]
 
 failure (bar_failure.nml): a bar in 1D strain stretched homogeneously (the
   initial velocity field v0 x / L, the end x = L held at v0) with linear
@@ -39,6 +39,17 @@ stop (bar_stop.nml): elastic bar onto a wall, stop_block = 'bar' at 0.5.
      exact sum as the stop's).
   2. The time is L / (2 c) within 3 h / c (the width of the wave front
      spread by the artificial viscosity) plus one step.
+
+spall (plate_spall.nml): symmetric plate impact, flyer 0.2 cm onto a 0.4 cm
+  target, spall_strength 0.01 Mbar, no erosion.
+  1. Zones fail, all in the target, all within 0.1 cm (a quarter of the
+     target) of x = 0.4, where the two release waves meet in the acoustic
+     approximation (the shocks run a few percent faster than sound at this
+     speed; the spalled layer has the width of the tension above 0.01 Mbar).
+  2. Every failed zone has pressure >= 0 and no deviatoric stress, and the
+     spall opens: a failed zone stretched beyond 5% while every live target
+     zone stays below it (elastic tension at the spall strength is 1.4%).
+  3. Energy balance at round-off.
 
 Round-off bound of the energy balance: each cycle changes each energy term by
 a few roundings of its size; over N cycles the error is below
@@ -224,15 +235,52 @@ def case_stop(a):
     check("a final dump at the last cycle (reason 'final')", ok)
 
 
+def case_spall(a):
+    wd = os.path.join(a.workdir, "spall")
+    if run(a, "plate_spall.nml", wd).returncode != 0:
+        return
+    last = sorted(f for f in os.listdir(wd) if f.startswith("dump_") and f.endswith(".h5"))[-1]
+    with h5py.File(os.path.join(wd, last), "r") as f:
+        d = f["zones/damage"][()]
+        p = f["zones/pressure"][()]
+        s = f["zones/deviatoric_stress"][()].reshape(-1, 6)
+        block = f["mesh/block"][()]
+        conn = f["mesh/connectivity"][()].reshape(-1, 8)
+        v = f["zones/volume"][()]
+    with h5py.File(os.path.join(wd, "dump_000000.h5"), "r") as f:
+        x0 = f["mesh/coordinates"][()][:, 0]
+        v0 = f["zones/volume"][()]
+    failed = d >= 1.0
+    centre = x0[conn].mean(axis=1)
+    check("zones spall (%d), all in the target, within 0.1 of x = 0.4 (%.3f .. %.3f)"
+          % (failed.sum(), centre[failed].min() if failed.any() else 0,
+             centre[failed].max() if failed.any() else 0),
+          failed.any() and np.all(block[failed] == 2)
+          and np.all(np.abs(centre[failed] - 0.4) <= 0.1))
+    check("failed zones: p >= 0 and no deviatoric stress",
+          np.all(p[failed] >= 0.0) and np.all(s[failed] == 0.0))
+    # A live zone in tension at the spall strength stretches by p/K, about
+    # 1.4% (K = rho0 c0^2 = 0.74 Mbar); the failed zones, free of tension,
+    # open far beyond that: the spall gap.
+    check("the failed zones opened: V/V0 %.3f .. %.3f, above 1.05 (live target zones <= %.4f)"
+          % ((v / v0)[failed].min() if failed.any() else 0,
+             (v / v0)[failed].max() if failed.any() else 0,
+             (v / v0)[~failed & (block == 2)].max()),
+          failed.any() and (v / v0)[failed].max() > 1.05
+          and (v / v0)[~failed & (block == 2)].max() < 1.05)
+    balance(history.read(wd), "spall")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("exe")
     ap.add_argument("workdir")
-    ap.add_argument("--case", required=True, choices=["failure", "erosion", "stop"])
+    ap.add_argument("--case", required=True, choices=["failure", "erosion", "stop", "spall"])
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--np", type=int, default=1)
     a = ap.parse_args()
-    {"failure": case_failure, "erosion": case_erosion, "stop": case_stop}[a.case](a)
+    {"failure": case_failure, "erosion": case_erosion, "stop": case_stop,
+     "spall": case_spall}[a.case](a)
     print("%d check(s) failed" % len(FAILED) if FAILED else "all checks passed")
     return 1 if FAILED else 0
 
