@@ -11,13 +11,14 @@ module app_run
   use hydro_state, only: state_t
   use hydro_boundary, only: boundary_t
   use hydro_driver, only: material_zones_t, hydro_zone_update
-  use contact_enforce, only: contact_t, contact_report
+  use hydro_erosion, only: erosion_restore
+  use contact_enforce, only: contact_t, contact_report, side_context_t
   use contact_monitor, only: contact_audit_due
-  use solver_step, only: solver_cycle, solver_audit
+  use solver_step, only: solver_cycle, solver_audit, solver_contact_refresh
   use solver_schedule, only: schedule_t
   use solver_fault, only: inject_nan, inject_tangle
   use solver_control, only: control_t, control_reduce, control_stop_request, &
-      control_step_failed, FAIL_NONE, STOP_NONE
+      control_step_failed, control_block_kinetic, FAIL_NONE, STOP_NONE
   use solver_eta, only: eta_t
   use io_deck, only: config_t, deck_read, output_directory_create
   use io_h5, only: h5_library_open, h5_library_close
@@ -25,10 +26,10 @@ module app_run
   use io_probe, only: probes_t, probe_open, probe_sample
   use io_output, only: output_dump, output_history, status_line, input_errors_report, &
       setup_echo, failure_message, max_cycles_message, stop_message, audit_stop_message, &
-      timing_report, halo_report
+      timing_report, halo_report, kinetic_stop_message
   use parallel_env, only: par_sum, par_rank, par_bcast
   use app_provenance, only: restart_deck_check
-  use app_setup, only: setup_run
+  use app_setup, only: setup_run, setup_sides
   use app_summary, only: model_speed_check, model_summary
   implicit none
   private
@@ -118,14 +119,29 @@ contains
       return
     end if
 
+    ! The positions at t = 0 (a restart has them from its dump): the dumps'
+    ! displacement, the initial volumes of the distortion erosion.
+    if (.not. allocated(state%node_position_initial)) &
+        state%node_position_initial = state%node_position
+    call erosion_restore(mesh, state, mz, config%erosion)
+    ! A restart after an erosion: the contact surfaces of the live zones.
+    if (allocated(state%zone_alive) .and. len_trim(restart) > 0) then
+      if (par_sum(count(state%zone_alive(1:mesh%nzone_owned) == 0.0_rk)) > 0) &
+          call solver_contact_refresh(mesh, state, bc, ct, setup_sides(config), timers)
+    end if
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
     call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl)
     if (contact_audit_due(ct, .true.)) call solver_audit(ct, state, timers)
-    ! The positions at t = 0 (a restart has them from its dump): the dumps'
-    ! displacement.
-    if (.not. allocated(state%node_position_initial)) &
-        state%node_position_initial = state%node_position
+    if (len_trim(restart) == 0) then
+      ! The run's first stable step: the reference of &erosion dt_fraction.
+      state%dt_reference = ctl%dt
+      if (config%stop_block_index > 0) state%stop_kinetic_initial = &
+          control_block_kinetic(mesh, state, config%stop_block_index)
+    else if (config%stop_block_index > 0 .and. state%stop_kinetic_initial == 0.0_rk) then
+      ! stop_block added at the restart: the reference is the block's energy now.
+      state%stop_kinetic_initial = control_block_kinetic(mesh, state, config%stop_block_index)
+    end if
     if (len_trim(restart) == 0) then
       allocate(per_material(4, size(config%materials)))
       call history_sums(config, mesh, state, sums, per_material)
@@ -176,7 +192,7 @@ contains
     type(config_t), intent(in) :: config
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
-    type(material_zones_t), intent(in) :: mz
+    type(material_zones_t), intent(inout) :: mz
     type(boundary_t), intent(inout) :: bc
     type(contact_t), intent(inout) :: ct
     type(control_t), intent(inout) :: ctl
@@ -185,15 +201,17 @@ contains
     real(rk), intent(in) :: wall_begin !< start of the run, for the wall-time limit
     type(timers_t), intent(inout) :: timers
     integer, intent(out) :: code
-    real(rk) :: dt, wall_start, wall_status, wall_cycle, wall_dump
+    real(rk) :: dt, wall_start, wall_status, wall_cycle, wall_dump, kinetic
     integer(i8) :: cycle_status
     integer :: bad, bad_half, request, signum
-    logical :: ok
+    logical :: ok, kinetic_stop
     character(len=8) :: dump_why
     type(eta_t) :: eta
     type(schedule_t) :: plan
+    type(side_context_t) :: sides
 
     code = EXIT_OK
+    sides = setup_sides(config)
     wall_start = wall_time()
     call eta%add(wall_start, state%time)
     wall_status = wall_start
@@ -212,6 +230,7 @@ contains
     ! The wall-time budget's dump estimate: the longest dump so far, at first
     ! the initial dump or, after a restart, the read of the restart dump.
     wall_dump = max(timers%total('dumps'), timers%total('restart read'))
+    kinetic_stop = .false.
 
     do while (code == EXIT_OK)
       if (ctl%fail /= FAIL_NONE) then
@@ -221,6 +240,11 @@ contains
         exit
       end if
       if (state%time >= config%t_end) exit
+      ! &control stop_block: ends like t_end (final dump, exit 0).
+      if (kinetic_stop) then
+        call kinetic_stop_message(config, state, kinetic)
+        exit
+      end if
       if (state%cycle >= config%max_cycles) then
         call max_cycles_message(config, state)
         call output_dump(config, mesh, state, ct, 'max_cycles', wall_start, timers, ok)
@@ -238,7 +262,7 @@ contains
       if (state%cycle + 1 == config%fault_cycle .and. config%fault_kind == 'tangle') &
           call inject_tangle(mesh, state)
       call solver_cycle(config%hydro, config%materials, mesh, state, mz, bc, ct, plan, dt, &
-          bad_half, bad, timers)
+          bad_half, bad, timers, config%failures, config%erosion, sides)
       if (ct%stop_run) then
         call audit_stop_message()
         call output_history(config, mesh, state, ct, timers)
@@ -257,6 +281,10 @@ contains
       call control_reduce(mesh, state, config%hydro, merge(bad_half, bad, bad_half > 0), &
           FAIL_NONE, ctl, request, signum)
       if (ctl%fail /= FAIL_NONE) cycle
+      if (config%stop_block_index > 0) then
+        kinetic = control_block_kinetic(mesh, state, config%stop_block_index)
+        kinetic_stop = kinetic < config%stop_kinetic_fraction * state%stop_kinetic_initial
+      end if
       call probe_sample(probes, state)
       if (ctl%stop /= STOP_NONE .and. .not. plan%last) then
         call output_history(config, mesh, state, ct, timers)

@@ -22,6 +22,7 @@ module app_setup
       BC_SYMMETRY, BC_WALL
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
+  use hydro_erosion, only: erosion_allocate
   use contact_enforce, only: contact_t, contact_setup, side_context_t
   use contact_monitor, only: contact_initial
   use contact_state, only: initial_offsets_t
@@ -34,7 +35,7 @@ module app_setup
   use parallel_route, only: par_max_i8
   implicit none
   private
-  public :: setup_run, setup_mesh, setup_state, assign_blocks
+  public :: setup_run, setup_mesh, setup_state, assign_blocks, setup_sides
 
   !> A curved part of a deck (the array of them is one per &mesh part).
   type :: block_part_holder_t
@@ -78,11 +79,7 @@ contains
     end if
     if (status%ok()) call setup_mesh(config, global, mesh, coordinates, bc, timers, status)
     if (.not. status%ok()) return
-    ! Surfaces given by blocks: the deck's blocks, and the face sets that
-    ! never form one (symmetry planes, rigid walls).
-    sides%block_names = config%blocks(:)%name
-    sides%closed_sets = pack(config%boundaries(:)%set, config%boundaries(:)%kind == BC_SYMMETRY &
-        .or. config%boundaries(:)%kind == BC_WALL)
+    sides = setup_sides(config)
     if (size(config%contacts) > 0) then
       call timers%start('contact set-up')
       ! (initial overlaps may move nodes)
@@ -571,6 +568,17 @@ contains
 
   end subroutine check_contacts
 
+  !> Surfaces given by blocks: the deck's blocks, and the face sets that
+  !> never form one (symmetry planes, rigid walls); set-up and the contact
+  !> refresh after an erosion take the same.
+  function setup_sides(config) result(sides)
+    type(config_t), intent(in) :: config
+    type(side_context_t) :: sides
+    sides%block_names = config%blocks(:)%name
+    sides%closed_sets = pack(config%boundaries(:)%set, config%boundaries(:)%kind == BC_SYMMETRY &
+        .or. config%boundaries(:)%kind == BC_WALL)
+  end function setup_sides
+
   !> Allocate the state and apply the initial conditions (positions of the
   !> local nodes given); nodal masses are the sums of corner masses m_z / 8.
   subroutine setup_state(config, coordinates, mesh, bc, state, mz, status)
@@ -587,6 +595,7 @@ contains
     call state_init(state, mesh%nnode, mesh%nzone, config%hydro%hourglass == HOURGLASS_STIFFNESS, &
         any(config%materials%strength /= STRENGTH_NONE), &
         hourglass=config%hydro%hourglass /= HOURGLASS_NONE)
+    call erosion_allocate(mesh, state, config%failures, config%erosion)
     state%node_position = coordinates
     allocate(zone_material(mesh%nzone))
     do z = 1, mesh%nzone

@@ -116,7 +116,14 @@ contains
       deallocate(r%id, r%val)
       allocate(r%id(3, 2 * nr), r%val(nv, 2 * nr))
     end if
-    ! Bucket sort by owned node (stable).
+    ! Bucket sort by owned node (stable). The owned nodes change with a
+    ! surface refresh (erosion): the buckets follow.
+    if (allocated(r%start)) then
+      if (size(r%start) /= nown + 1) deallocate(r%start)
+    end if
+    if (allocated(r%place)) then
+      if (size(r%place) /= nown + 1) deallocate(r%place)
+    end if
     if (.not. allocated(r%start)) allocate(r%start(nown + 1))
     if (.not. allocated(r%place)) allocate(r%place(nown + 1))
     if (allocated(r%node)) then

@@ -8,6 +8,7 @@ module hydro_driver
   use material_table, only: material_t, material_eos, material_flow, STRENGTH_NONE, &
       EOS_IDEAL_GAS, EOS_MIE_GRUNEISEN
   use material_strength, only: deviatoric_update, velocity_gradient, equivalent_strain_rate
+  use material_failure, only: failure_t, failure_damage_rate, failure_homologous
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_NONE, HOURGLASS_VISCOUS, &
       HOURGLASS_STIFFNESS, VISCOSITY_EDGE
   use hydro_kernels, only: zone_kinematics, zone_viscosity, zone_corner_forces, zone_work, &
@@ -18,7 +19,7 @@ module hydro_driver
   private
   public :: hydro_zone_update, hydro_forces, hydro_energy_update, hydro_velocity_update
   public :: hydro_time_step, hydro_energies, material_zones_build, hydro_strength_update
-  public :: hydro_material_energies, hydro_heat_flux
+  public :: hydro_material_energies, hydro_heat_flux, hydro_eroded_quiet, first_bad_live
 
   !> Zones of each material (local indices), for the EOS loops.
   type, public :: material_zones_t
@@ -71,6 +72,9 @@ contains
       call zone_kinematics(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
           state%zone_bmatrix, state%zone_length, state%zone_divergence, bad)
     end if
+    ! Eroded zones may turn inside out: only a live zone's volume stops the run.
+    if (bad > 0 .and. allocated(state%zone_alive)) bad = first_bad_live(state%zone_volume, &
+        state%zone_alive)
     do z = 1, mesh%nzone
       ! A tangled zone keeps its last density; the run stops at the end of the cycle.
       if (state%zone_volume(z) > 0.0_rk) state%zone_density(z) = state%zone_mass(z) / &
@@ -80,6 +84,13 @@ contains
       call material_eos(materials(m), mz%list(mz%start(m):mz%start(m + 1) - 1), &
           state%zone_density, state%zone_energy, state%zone_pressure, state%zone_sound_speed)
     end do
+    ! A failed zone carries no tension.
+    if (allocated(state%zone_damage)) then
+      do z = 1, mesh%nzone
+        if (state%zone_damage(z) >= 1.0_rk) state%zone_pressure(z) = &
+            max(state%zone_pressure(z), 0.0_rk)
+      end do
+    end if
     if (opt%viscosity == VISCOSITY_EDGE) then
       if (.not. allocated(state%zone_edge_q)) allocate(state%zone_edge_q(2, mesh%nzone))
       do m = 1, size(materials)
@@ -105,7 +116,41 @@ contains
       call zone_viscosity(mesh%nzone, opt%q_linear, opt%q_quadratic, state%zone_density, &
           state%zone_sound_speed, state%zone_length, state%zone_divergence, state%zone_viscosity)
     end if
+    if (allocated(state%eroded_zones)) call hydro_eroded_quiet(state)
   end subroutine hydro_zone_update
+
+  !> First zone with a non-positive volume among the live ones (0: none).
+  pure integer function first_bad_live(volume, alive) result(bad)
+    real(rk), intent(in) :: volume(:), alive(:)
+    integer :: z
+    bad = 0
+    do z = 1, size(volume)
+      if (.not. (volume(z) > 0.0_rk) .and. alive(z) > 0.0_rk) then
+        bad = z
+        return
+      end if
+    end do
+  end function first_bad_live
+
+  !> Eroded zones carry nothing and limit no step: pressure, viscosity, sound
+  !> speed, divergence (so zone_time_step finds no bound) and deviatoric
+  !> stress 0; the edge viscosity's limiter 1 - psi 0.
+  subroutine hydro_eroded_quiet(state)
+    type(state_t), intent(inout) :: state
+    integer :: i, z
+    do i = 1, size(state%eroded_zones)
+      z = state%eroded_zones(i)
+      state%zone_pressure(z) = 0.0_rk
+      state%zone_viscosity(z) = 0.0_rk
+      state%zone_sound_speed(z) = 0.0_rk
+      state%zone_divergence(z) = 0.0_rk
+      if (allocated(state%zone_edge_q)) state%zone_edge_q(1, z) = 0.0_rk
+      if (allocated(state%zone_stress)) then
+        state%zone_stress(:, z) = 0.0_rk
+        state%zone_stress_half(:, z) = 0.0_rk
+      end if
+    end do
+  end subroutine hydro_eroded_quiet
 
   !> Strong-shock factor g of the edge viscosity: (gamma + 1)/4 for an ideal
   !> gas; s/2 for Mie-Gruneisen (Us = c0 + s up: the strong-shock limit of
@@ -141,9 +186,13 @@ contains
     integer :: z, k
     real(rk) :: s(6), b(3)
     real(rk) :: unused(3, 4, 1)
+    real(rk), allocatable :: kept(:)
     logical :: book
     ! The corrector books the hourglass forces' work.
     book = stage_dt > 0.0_rk .and. allocated(state%zone_hourglass_work)
+    ! An eroded zone's forces are dropped below: its hourglass work stays.
+    if (book .and. allocated(state%eroded_zones)) kept = &
+        state%zone_hourglass_work(state%eroded_zones)
     if (opt%hourglass == HOURGLASS_STIFFNESS) then
       if (book) then
         call zone_corner_forces(mesh%nzone, mesh%nnode, mesh%zone_node, x, v, state%zone_volume, &
@@ -196,6 +245,13 @@ contains
         end do
       end do
     end if
+    ! An eroded zone exerts no force.
+    if (allocated(state%eroded_zones)) then
+      do k = 1, size(state%eroded_zones)
+        state%corner_force(:, :, state%eroded_zones(k)) = 0.0_rk
+      end do
+      if (allocated(kept)) state%zone_hourglass_work(state%eroded_zones) = kept
+    end if
     call node_gather_forces(mesh%nnode_owned, 8 * mesh%nzone, mesh%corner_start, &
         mesh%corner_list, state%corner_force, state%node_force)
     call boundary_pressure_forces(bc, mesh, x, state%node_force)
@@ -226,6 +282,12 @@ contains
         state%node_mass, step, v_new)
     call boundary_constrain(bc, v_new, .true.)
     call boundary_wall(bc, state%node_position_old, state%node_velocity_old, v_new, step)
+    ! Nodes that left the calculation stay where they are.
+    if (allocated(state%dead_nodes)) then
+      do k = 1, size(state%dead_nodes)
+        v_new(:, state%dead_nodes(k)) = 0.0_rk
+      end do
+    end if
     ! Work of the constraint and wall reactions and of the applied pressure.
     if (.not. present(work)) return
     do k = 1, bc%nkinematic
@@ -243,8 +305,11 @@ contains
 
   !> Deviatoric stress of every local zone of a material with strength:
   !> to = return(from + step (2 G D' + W s - s W)) with the velocity gradient of
-  !> v on the current B-matrix; plastic strain accumulates when accumulate.
-  subroutine hydro_strength_update(mesh, state, materials, mz, v, step, from, to, accumulate)
+  !> v on the current B-matrix; plastic strain accumulates when accumulate,
+  !> and with it the damage of a material with a failure model (failures).
+  !> A failed zone (damage 1) carries no deviatoric stress.
+  subroutine hydro_strength_update(mesh, state, materials, mz, v, step, from, to, accumulate, &
+      failures)
     type(mesh_t), intent(in) :: mesh
     type(state_t), intent(inout) :: state
     type(material_t), intent(in) :: materials(:)
@@ -254,19 +319,31 @@ contains
     real(rk), intent(in) :: from(:, :)
     real(rk), intent(inout) :: to(:, :)
     logical, intent(in) :: accumulate
+    type(failure_t), intent(in), optional :: failures(:) !< per material (damage models)
     integer :: m, i, z, k
-    real(rk) :: vz(3, 8), grad(3, 3), dp, shear, yield, hardening, sbar
+    real(rk) :: vz(3, 8), grad(3, 3), dp, shear, yield, hardening, sbar, rate
+    logical :: damage, failed
+    failed = allocated(state%zone_damage)
     do m = 1, size(materials)
       if (materials(m)%strength == STRENGTH_NONE) cycle
+      damage = .false.
+      if (present(failures) .and. accumulate) damage = allocated(failures(m)%model)
       do i = mz%start(m), mz%start(m + 1) - 1
         z = mz%list(i)
         if (.not. (state%zone_volume(z) > 0.0_rk)) cycle
+        if (failed) then
+          if (state%zone_damage(z) >= 1.0_rk) then
+            to(:, z) = 0.0_rk
+            cycle
+          end if
+        end if
         do k = 1, 8
           vz(:, k) = v(:, mesh%zone_node(k, z))
         end do
         call velocity_gradient(vz, state%zone_bmatrix(:, :, z), state%zone_volume(z), grad)
+        rate = equivalent_strain_rate(grad)
         call material_flow(materials(m), state%zone_pressure(z), state%zone_energy(z), &
-            state%zone_density(z), state%zone_plastic_strain(z), equivalent_strain_rate(grad), &
+            state%zone_density(z), state%zone_plastic_strain(z), rate, &
             shear, yield, hardening)
         call deviatoric_update(from(:, z), grad, step, shear, yield, to(:, z), dp, hardening)
         if (accumulate) state%zone_plastic_strain(z) = state%zone_plastic_strain(z) + dp
@@ -277,6 +354,14 @@ contains
               + 2.0_rk * (to(4, z)**2 + to(5, z)**2 + to(6, z)**2)))
           state%zone_plastic_work(z) = state%zone_plastic_work(z) + sbar * dp * &
               state%zone_volume(z)
+          ! Damage D += dp / eps_f(sigma*, epsdot*, T*); at 1 the zone has
+          ! failed and drops its deviatoric stress now.
+          if (damage .and. sbar > 0.0_rk) then
+            state%zone_damage(z) = min(1.0_rk, state%zone_damage(z) + dp * &
+                failure_damage_rate(failures(m), state%zone_pressure(z), sbar, rate, &
+                failure_homologous(materials(m), state%zone_energy(z))))
+            if (state%zone_damage(z) >= 1.0_rk) to(:, z) = 0.0_rk
+          end if
         end if
       end do
     end do

@@ -69,6 +69,22 @@ module hydro_state
     !> sum of -dt F_hg . v over the corrector stages (hourglass control on
     !> only; restart data)
     real(rk), allocatable :: zone_hourglass_work(:)
+    !> failure damage D = sum(deps_p / eps_f), 1 when failed (a material with a
+    !> failure model or a spall strength only; dumps and restart)
+    real(rk), allocatable :: zone_damage(:)
+    !> erosion on only: 1 live, 0 eroded (dumps and restart; ghosts from the halo)
+    real(rk), allocatable :: zone_alive(:)
+    !> &erosion volume_ratio only: zone volume at t = 0 (from the initial positions)
+    real(rk), allocatable :: zone_volume_initial(:)
+    !> erosion on only: the kinetic energy an owned node took with it when the
+    !> last live zone using it was eroded (restart data)
+    real(rk), allocatable :: node_eroded_kinetic(:)
+    integer, allocatable :: eroded_zones(:) !< erosion on only: local eroded zones, ascending
+    integer, allocatable :: dead_nodes(:) !< erosion on only: owned nodes no live zone uses
+    !> the run's first stable step (&erosion dt_fraction's reference; restart data)
+    real(rk) :: dt_reference = 0.0_rk
+    !> &control stop_block's kinetic energy at t = 0 (restart data)
+    real(rk) :: stop_kinetic_initial = 0.0_rk
     real(rk) :: time = 0.0_rk !< t^n
     real(rk) :: dt = 0.0_rk !< step of the current cycle
     real(rk) :: dt_previous = 0.0_rk !< step of the previous cycle (0 before the first)

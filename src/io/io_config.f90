@@ -14,6 +14,7 @@ module io_config
   use mesh_deck, only: mesh_part_t
   use material_table, only: material_t, STRENGTH_NONE
   use material_deck, only: block_spec_t
+  use material_failure, only: failure_t, erosion_spec_t
   use hydro_state, only: hydro_options_t
   use hydro_boundary, only: boundary_spec_t
   use hydro_initial, only: region_t
@@ -66,6 +67,13 @@ module io_config
     type(hydro_options_t) :: hydro
     type(mesh_part_t), allocatable :: parts(:) !< one per &mesh group, appended in order
     type(material_t), allocatable :: materials(:)
+    type(failure_t), allocatable :: failures(:) !< each material's failure (&material failure keys)
+    type(erosion_spec_t) :: erosion !< &erosion: distortion erosion
+    !> &control stop_block: the run ends when this block's kinetic energy falls
+    !> below stop_kinetic_fraction of its initial value ('' = never)
+    character(len=NAME_LEN) :: stop_block = ''
+    integer :: stop_block_index = 0 !< its index in blocks (io_deck resolves it)
+    real(rk) :: stop_kinetic_fraction = 0.0_rk
     type(block_spec_t), allocatable :: blocks(:)
     type(region_t), allocatable :: regions(:)
     type(boundary_spec_t), allocatable :: boundaries(:)
@@ -81,7 +89,7 @@ module io_config
   end type config_t
 
   !> &control: the run (end, steps, stops, units).
-  type(key_t), parameter, public :: CONTROL_KEYS(19) = [ &
+  type(key_t), parameter, public :: CONTROL_KEYS(21) = [ &
       key_t("title", "c", "''", "", &
       "run title (dumps, status)"), &
       key_t("t_end", "r", "required", "time", &
@@ -119,7 +127,11 @@ module io_config
       key_t("allow_high_speed", "l", ".false.", "", &
       "accept initial node speeds above 10 cm/us (100 km/s; refused otherwise as a unit mistake)"), &
       key_t("partitioner", "c", "'scotch'", "", &
-      "zone partition: 'scotch' (PT-Scotch, in parallel) or 'metis' (serial METIS on rank 0)")]
+      "zone partition: 'scotch' (PT-Scotch, in parallel) or 'metis' (serial METIS on rank 0)"), &
+      key_t("stop_block", "c", "''", "", &
+      "the run ends (final dump, exit 0) when this block's kinetic energy falls below the fraction"), &
+      key_t("stop_kinetic_fraction", "r", "required with stop_block", "", &
+      "fraction of stop_block's initial kinetic energy that ends the run, in (0, 1)")]
 
   !> &output: dumps, history and status lines.
   type(key_t), parameter, public :: OUTPUT_KEYS(6) = [ &
@@ -169,9 +181,11 @@ contains
     character(len=16) :: units
     logical :: allow_high_speed
     character(len=8) :: partitioner
+    character(len=NAME_LEN) :: stop_block
+    real(rk) :: stop_kinetic_fraction
     namelist /control/ title, t_end, max_cycles, deck_version, restart, cfl, dt_initial, &
         dt_max, dt_min, dt_growth, dvol_max, fault_cycle, fault_kind, wall_limit, stop_file, &
-        stop_check_every, units, allow_high_speed, partitioner
+        stop_check_every, units, allow_high_speed, partitioner, stop_block, stop_kinetic_fraction
 
     title = config%title
     t_end = config%t_end
@@ -186,6 +200,8 @@ contains
     units = config%units
     allow_high_speed = config%allow_high_speed
     partitioner = config%partitioner
+    stop_block = ''
+    stop_kinetic_fraction = UNSET
     cfl = config%hydro%cfl
     dt_initial = config%hydro%dt_initial
     dt_max = config%hydro%dt_max
@@ -224,6 +240,18 @@ contains
     if (partitioner /= 'scotch' .and. partitioner /= 'metis') call status%add('&control: '// &
         'partitioner: '''//trim(partitioner)//''' is not a partitioner (valid: scotch, metis)')
     config%partitioner = partitioner
+    if (len_trim(stop_block) > 0) then
+      if (stop_kinetic_fraction == UNSET) then
+        call status%add('&control: stop_kinetic_fraction: required with stop_block')
+      else if (.not. (stop_kinetic_fraction > 0.0_rk .and. stop_kinetic_fraction < 1.0_rk)) then
+        call status%add('&control: stop_kinetic_fraction: must be in (0, 1)')
+      end if
+    else if (stop_kinetic_fraction /= UNSET) then
+      call status%add('&control: stop_kinetic_fraction: only with stop_block (the block '// &
+          'whose kinetic energy ends the run)')
+    end if
+    config%stop_block = stop_block
+    config%stop_kinetic_fraction = max(stop_kinetic_fraction, 0.0_rk)
     if (.not. (cfl > 0.0_rk .and. cfl <= 1.0_rk)) call status%add('&control: cfl: must be '// &
         'in (0, 1]')
     if (dt_initial < 0.0_rk) call status%add('&control: dt_initial: must be >= 0 '// &

@@ -10,13 +10,14 @@ module io_deck
   use core_status, only: status_t
   use core_keys, only: key_t, key_names
   use core_text, only: join
+  use core_names, only: name_hint
   use core_units, only: UNITS_CGSUS
   use io_deck_scan, only: deck_scan, group_instance_t, to_lower, group_text, value_problem, &
       closest_name, LINE_LEN, KEY_LEN
   use parallel_env, only: par_rank, par_bcast
   use mesh_deck, only: read_mesh, MESH_KEYS
   use material_deck, only: read_material, check_material_names, read_block, MATERIAL_KEYS, &
-      BLOCK_KEYS
+      BLOCK_KEYS, read_erosion, EROSION_KEYS
   use hydro_deck, only: read_hydro, read_region, read_boundary, HYDRO_KEYS, REGION_KEYS, &
       BOUNDARY_KEYS
   use contact_deck, only: read_contact, CONTACT_KEYS
@@ -31,11 +32,11 @@ module io_deck
   public :: output_directory_create
   public :: config_t
 
-  integer, parameter :: NGROUP_KNOWN = 10
+  integer, parameter :: NGROUP_KNOWN = 11
   !> Every group, in the order `impact3d --keys` lists them.
   character(len=*), parameter, public :: DECK_GROUPS(NGROUP_KNOWN) = [character(len=8) :: &
       'control', 'hydro', 'mesh', 'material', 'block', 'region', 'boundary', 'output', 'contact', &
-      'probe']
+      'probe', 'erosion']
 
   !> A group's text as read (unknown keys blanked).
   type :: section_t
@@ -75,6 +76,8 @@ contains
       keys = CONTACT_KEYS
     case ('probe')
       keys = PROBE_KEYS
+    case ('erosion')
+      keys = EROSION_KEYS
     case default
       allocate(keys(0))
     end select
@@ -171,7 +174,7 @@ contains
             ': group given more than once')
       case ('mesh')
         if (counts(k) == 0) call status%add('&mesh: required group is missing')
-      case ('hydro', 'output')
+      case ('hydro', 'output', 'erosion')
         if (counts(k) > 1) call status%add('&'//trim(DECK_GROUPS(k))// &
             ': group given more than once')
       case ('material', 'block', 'region')
@@ -182,7 +185,7 @@ contains
     ! Read every known group, unknown keys blanked out, so that every problem
     ! of the deck is reported in this one run.
 
-    allocate(config%materials(counts(4)), config%blocks(counts(5)), config%regions(counts(6)))
+    allocate(config%materials(counts(4)), config%failures(counts(4)), config%blocks(counts(5)), config%regions(counts(6)))
     allocate(config%boundaries(counts(7)), config%contacts(counts(9)))
     allocate(config%parts(counts(3)), config%probes(counts(10)))
     counts = 0
@@ -207,7 +210,7 @@ contains
         case ('material')
           counts(4) = counts(4) + 1
           call read_material(sect, counts(4), config%materials(counts(4)), status, &
-              config%materials_read, config%units)
+              config%materials_read, config%units, config%failures(counts(4)))
         case ('output')
           call read_output(sect, config%output, status)
         end select
@@ -236,9 +239,18 @@ contains
         case ('probe')
           counts(10) = counts(10) + 1
           call read_probe(sect, counts(10), config, status)
+        case ('erosion')
+          if (counts(11) == 0) call read_erosion(sect, config%blocks, config%erosion, status)
+          counts(11) = counts(11) + 1
         end select
       end associate
     end do
+    if (len_trim(config%stop_block) > 0) then
+      config%stop_block_index = findloc(config%blocks%name, config%stop_block, dim=1)
+      if (config%stop_block_index == 0) call status%add('&control: stop_block: '''// &
+          trim(config%stop_block)//''' is not a block of this deck'// &
+          name_hint(config%stop_block, config%blocks%name))
+    end if
     ! The single-stage scheme is for gas dynamics: its position update is not
     ! the one the contact, the wall and the strength update assume.
     if (config%hydro%single_stage) then
@@ -274,8 +286,8 @@ contains
     character(len=*), intent(in) :: stored_text !< deck text stored in the dump
     character(len=*), intent(in) :: deck_text !< this run's deck text
     type(status_t), intent(inout) :: status
-    character(len=8), parameter :: FIXED(7) = [character(len=8) :: 'mesh', 'material', &
-        'block', 'region', 'boundary', 'contact', 'hydro']
+    character(len=8), parameter :: FIXED(8) = [character(len=8) :: 'mesh', 'material', &
+        'block', 'region', 'boundary', 'contact', 'hydro', 'erosion']
     type(group_instance_t), allocatable :: old(:), new(:)
     integer :: nold, nnew, g, i, j, k, io, in, count_old, count_new
     type(status_t) :: scratch

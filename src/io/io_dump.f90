@@ -12,7 +12,7 @@ module io_dump
       h5_write_real_vector, h5_write_int_rows, h5_write_int_vector, h5_write_attr_real, &
       h5_write_attr_int, h5_write_attr_string, h5_read_real_rows, h5_read_real_vector, &
       h5_read_attr_real, h5_read_attr_int, h5_read_attr_string, h5_dataset_rows, h5_create_group, &
-      h5_path_exists
+      h5_path_exists, IO_H5_OK, IO_H5_ERR_NOT_FOUND
   use parallel_env, only: par_rank, par_size, par_comm_handle, par_info_null_handle, par_max, &
       par_io_info_handle
   implicit none
@@ -94,6 +94,21 @@ contains
     call h5_write_int_rows(file, '/mesh/connectivity', cblock, mesh%nzone_global, zone_first, &
         e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
+    ! With erosion: the connectivity the XDMF shows, an eroded zone collapsed
+    ! onto its first node (a cell of no extent, so ParaView draws only the
+    ! live zones and every zone field keeps its row).
+    if (allocated(state%zone_alive)) then
+      allocate(connectivity(8, nzo))
+      do z = 1, nzo
+        connectivity(:, z) = int(mesh%node_gid(mesh%zone_node(:, z)) - 1, ik)
+        if (state%zone_alive(z) == 0.0_rk) connectivity(:, z) = connectivity(1, z)
+      end do
+      call mesh%zone_io%to_block_int(connectivity, cblock)
+      deallocate(connectivity)
+      call h5_write_int_rows(file, '/mesh/live_connectivity', cblock, mesh%nzone_global, &
+          zone_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+    end if
     call mesh%zone_io%to_block_int(reshape(mesh%zone_block(1:nzo), [1, nzo]), cblock(1:1, :))
     call h5_write_int_vector(file, '/mesh/block', cblock(1, :), mesh%nzone_global, &
         zone_first, e, msg)
@@ -163,6 +178,12 @@ contains
           'pressure')
     end if
 
+    ! Failure and erosion.
+    if (allocated(state%zone_damage)) call zone_field('/zones/damage', state%zone_damage, &
+        'dimensionless')
+    if (allocated(state%zone_alive)) call zone_field('/zones/alive', state%zone_alive, &
+        'dimensionless')
+
     ! Restart-only state.
     call h5_create_group(file, '/restart', e, msg)
     if (e /= 0 .and. ierr == 0) ierr = e
@@ -184,6 +205,21 @@ contains
           node_first, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
       call units_of('/restart/initial_position', 'length')
+    end if
+
+    if (allocated(state%zone_alive)) then
+      call h5_write_attr_real(file, '/restart', 'dt_reference', state%dt_reference, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call mesh%node_io%to_block(reshape(state%node_eroded_kinetic(1:nno), [1, nno]), nblock1)
+      call h5_write_real_vector(file, '/restart/eroded_kinetic', nblock1(1, :), &
+          mesh%nnode_global, node_first, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call units_of('/restart/eroded_kinetic', 'energy')
+    end if
+    if (state%stop_kinetic_initial > 0.0_rk) then
+      call h5_write_attr_real(file, '/restart', 'stop_kinetic_initial', &
+          state%stop_kinetic_initial, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
     end if
 
     ! Energy bookkeeping per zone (the history's per-material columns).
@@ -235,7 +271,8 @@ contains
     if (e /= 0 .and. ierr == 0) ierr = e
     if (.not. agreed()) return
     if (par_rank() == 0) call write_sidecar(path, title, mesh%nnode_global, mesh%nzone_global, &
-        state%time, allocated(state%zone_stress), present(contact_gap))
+        state%time, allocated(state%zone_stress), present(contact_gap), &
+        allocated(state%zone_damage), allocated(state%zone_alive))
 
   contains
 
@@ -286,12 +323,14 @@ contains
   end function von_mises
 
   !> XDMF sidecar for one dump, so that ParaView and VisIt open it directly.
-  subroutine write_sidecar(path, title, nnode, nzone, time, strength, contact)
+  subroutine write_sidecar(path, title, nnode, nzone, time, strength, contact, damage, alive)
     character(len=*), intent(in) :: path, title
     integer(i8), intent(in) :: nnode, nzone
     real(rk), intent(in) :: time
     logical, intent(in) :: strength !< the dump has deviatoric stress and plastic strain
     logical, intent(in) :: contact !< the dump has the contact audit's gaps
+    logical, intent(in) :: damage !< the dump has the failure damage
+    logical, intent(in) :: alive !< the dump has the zones' liveness (erosion)
     integer :: unit
     character(len=:), allocatable :: base
     base = basename(path)
@@ -299,19 +338,22 @@ contains
     write(unit, '(a)') '<?xml version="1.0" ?>'
     write(unit, '(a)') '<Xdmf Version="3.0">'
     write(unit, '(a)') ' <Domain>'
-    call write_grid(unit, base, title, nnode, nzone, time, strength, contact)
+    call write_grid(unit, base, title, nnode, nzone, time, strength, contact, damage, alive)
     write(unit, '(a)') ' </Domain>'
     write(unit, '(a)') '</Xdmf>'
     close(unit)
   end subroutine write_sidecar
 
   !> One <Grid> element describing a dump file (path relative to the .xmf).
-  subroutine write_grid(unit, h5file, title, nnode, nzone, time, strength, contact)
+  !> With erosion (alive) the topology is /mesh/live_connectivity: eroded
+  !> zones collapsed to a point, so only the live zones show.
+  subroutine write_grid(unit, h5file, title, nnode, nzone, time, strength, contact, damage, &
+      alive)
     integer, intent(in) :: unit
     character(len=*), intent(in) :: h5file, title
     integer(i8), intent(in) :: nnode, nzone
     real(rk), intent(in) :: time
-    logical, intent(in) :: strength, contact
+    logical, intent(in) :: strength, contact, damage, alive
     character(len=32) :: nn, nz, ts
     integer :: i
     character(len=*), parameter :: zone_fields(7) = [character(len=24) :: 'density', &
@@ -323,7 +365,8 @@ contains
     write(unit, '(a)') '   <Time Value="'//trim(adjustl(ts))//'"/>'
     write(unit, '(a)') '   <Topology TopologyType="Hexahedron" NumberOfElements="'//trim(nz)//'">'
     write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//' 8" NumberType="Int" '// &
-        'Precision="4" Format="HDF">'//h5file//':/mesh/connectivity</DataItem>'
+        'Precision="4" Format="HDF">'//h5file//':/mesh/'// &
+        trim(merge('live_connectivity', 'connectivity     ', alive))//'</DataItem>'
     write(unit, '(a)') '   </Topology>'
     write(unit, '(a)') '   <Geometry GeometryType="XYZ">'
     write(unit, '(a)') '    <DataItem Dimensions="'//trim(nn)//' 3" NumberType="Float" '// &
@@ -371,7 +414,20 @@ contains
           'Precision="8" Format="HDF">'//h5file//':/zones/von_mises_stress</DataItem>'
       write(unit, '(a)') '   </Attribute>'
     end if
+    if (damage) call scalar_cell('damage')
+    if (alive) call scalar_cell('alive')
     write(unit, '(a)') '  </Grid>'
+
+  contains
+
+    subroutine scalar_cell(name)
+      character(len=*), intent(in) :: name
+      write(unit, '(a)') '   <Attribute Name="'//name//'" AttributeType="Scalar" Center="Cell">'
+      write(unit, '(a)') '    <DataItem Dimensions="'//trim(nz)//'" NumberType="Float" '// &
+          'Precision="8" Format="HDF">'//h5file//':/zones/'//name//'</DataItem>'
+      write(unit, '(a)') '   </Attribute>'
+    end subroutine scalar_cell
+
   end subroutine write_grid
 
   function xml_escape(text) result(out)
@@ -416,13 +472,14 @@ contains
   !> Rank 0: add a dump to the index file series_path.dumps (dropping entries at
   !> or after its cycle, as after a restart) and rewrite the time-series XDMF.
   subroutine dump_series_update(series_path, dump_path, title, cycle, time, nnode, nzone, &
-      strength, contact)
+      strength, contact, damage, alive)
     character(len=*), intent(in) :: series_path !< without extension
     character(len=*), intent(in) :: dump_path, title
     integer(i8), intent(in) :: cycle
     real(rk), intent(in) :: time
     integer(i8), intent(in) :: nnode, nzone
     logical, intent(in) :: strength, contact
+    logical, intent(in) :: damage, alive !< the dumps have damage, liveness (erosion)
     integer :: unit, ios, n, i
     integer(i8), allocatable :: cycles(:)
     real(rk), allocatable :: times(:)
@@ -475,7 +532,8 @@ contains
     write(unit, '(a)') ' <Domain>'
     write(unit, '(a)') ' <Grid Name="series" GridType="Collection" CollectionType="Temporal">'
     do i = 1, n
-      call write_grid(unit, trim(files(i)), title, nnode, nzone, times(i), strength, contact)
+      call write_grid(unit, trim(files(i)), title, nnode, nzone, times(i), strength, contact, &
+          damage, alive)
     end do
     write(unit, '(a)') ' </Grid>'
     write(unit, '(a)') ' </Domain>'
@@ -649,6 +707,20 @@ contains
       call mesh%zone_halo%exchange(zlocal)
       state%zone_hourglass = reshape(zlocal, [3, 4, mesh%nzone])
     end if
+    ! Failure and erosion.
+    if (allocated(state%zone_damage)) call read_zone('/zones/damage', state%zone_damage)
+    if (allocated(state%zone_alive)) then
+      call read_zone('/zones/alive', state%zone_alive)
+      call h5_read_attr_real(file, '/restart', 'dt_reference', state%dt_reference, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call h5_read_real_vector(file, '/restart/eroded_kinetic', nblock1(1, :), node_first, &
+          e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      call mesh%node_io%from_block(nblock1, zlocal_nodes)
+      state%node_eroded_kinetic(1:nno) = zlocal_nodes(1, :)
+    end if
+    state%stop_kinetic_initial = 0.0_rk
+    call optional_attribute('stop_kinetic_initial', state%stop_kinetic_initial)
     ! Energy bookkeeping (absent from dumps written before it: zero then).
     if (allocated(state%zone_plastic_work)) call optional_zone('/restart/plastic_work', &
         state%zone_plastic_work)
@@ -663,6 +735,23 @@ contains
     call mesh%node_halo%exchange(state%node_position_initial)
 
   contains
+
+    !> An attribute of /restart if the dump has it (value unchanged otherwise).
+    subroutine optional_attribute(name, value)
+      character(len=*), intent(in) :: name
+      real(rk), intent(inout) :: value
+      real(rk) :: got
+      character(len=400) :: why
+      why = ''
+      call h5_read_attr_real(file, '/restart', name, got, e, why)
+      if (e == IO_H5_OK) then
+        value = got
+      else if (e /= IO_H5_ERR_NOT_FOUND .and. ierr == 0) then
+        ierr = e
+        msg = why
+      end if
+      e = 0
+    end subroutine optional_attribute
 
     subroutine optional_zone(name, field)
       character(len=*), intent(in) :: name

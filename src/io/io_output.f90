@@ -30,7 +30,7 @@ module io_output
   private
   public :: output_dump, output_history, status_line, command_line
   public :: input_errors_report, setup_echo, failure_message, max_cycles_message
-  public :: stop_message, audit_stop_message, timing_report, halo_report
+  public :: stop_message, audit_stop_message, timing_report, halo_report, kinetic_stop_message
 
 contains
 
@@ -83,7 +83,8 @@ contains
     if (ok) then
       call dump_series_update(trim(config%output%directory)//'/'//trim(config%output%prefix), &
           trim(path), config%title, state%cycle, state%time, mesh%nnode_global, &
-          mesh%nzone_global, allocated(state%zone_stress), allocated(ct%node_gap))
+          mesh%nzone_global, allocated(state%zone_stress), allocated(ct%node_gap), &
+          allocated(state%zone_damage), allocated(state%zone_alive))
       if (par_rank() == 0) write(output_unit, '(a)') '  dump '//trim(path)
     else if (par_rank() == 0) then
       write(error_unit, '(a)') 'error: '//trim(status%messages(1))
@@ -127,6 +128,9 @@ contains
     reason = 'cfl'
     if (ctl%dt_reason == DT_VOLUME) reason = 'volume'
     call hydro_energies(mesh, state, sums)
+    ! The kinetic energy of the nodes erosion took out is still in the balance.
+    if (allocated(state%node_eroded_kinetic)) sums(2) = sums(2) + &
+        sum(state%node_eroded_kinetic(1:mesh%nnode_owned))
     call par_sum_array(sums)
     if (par_rank() == 0) then
       left = eta%seconds_left(config%t_end)
@@ -242,6 +246,25 @@ contains
   subroutine audit_stop_message()
     if (par_rank() == 0) write(error_unit, '(a)') '  writing a final dump and stopping'
   end subroutine audit_stop_message
+
+  !> The end by &control stop_block (rank 0): the block's kinetic energy fell
+  !> below stop_kinetic_fraction of its initial value.
+  subroutine kinetic_stop_message(config, state, kinetic)
+    type(config_t), intent(in) :: config
+    type(state_t), intent(in) :: state
+    real(rk), intent(in) :: kinetic !< the block's kinetic energy now
+    character(len=16) :: now, initial, t
+    if (par_rank() /= 0) return
+    write(now, '(es12.5)') kinetic
+    write(initial, '(es12.5)') state%stop_kinetic_initial
+    write(t, '(es12.5)') state%time
+    write(output_unit, '(a,i0,a)') 'impact3d: stopping at cycle ', state%cycle, ', t = '// &
+        trim(adjustl(t))//': the kinetic energy of block '''//trim(config%stop_block)// &
+        ''' ('//trim(adjustl(now))//') fell below stop_kinetic_fraction = '// &
+        fixed_text(config%stop_kinetic_fraction, 4)//' of its initial value ('// &
+        trim(adjustl(initial))//')'
+    flush(output_unit)
+  end subroutine kinetic_stop_message
 
   !> A clean stop (rank 0): why, before the restart dump (done = .false.),
   !> and after it was written (done = .true.).

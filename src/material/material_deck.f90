@@ -18,9 +18,10 @@ module material_deck
       STRENGTH_NONE, STRENGTH_ELASTIC_PLASTIC, STRENGTH_STEINBERG_GUINAN, STRENGTH_JOHNSON_COOK, &
       LIBRARY_NAMES
   use material_flow_stress, only: sg_set, jc_set, SG_SET_NAMES, JC_SET_NAMES
+  use material_failure, only: failure_t, erosion_spec_t, failure_model_new, FAILURE_NAMES
   implicit none
   private
-  public :: read_material, check_material_names, read_block
+  public :: read_material, check_material_names, read_block, read_erosion
 
   !> A block: zones whose centroid lies in box, made of one material.
   type, public :: block_spec_t
@@ -31,7 +32,7 @@ module material_deck
   end type block_spec_t
 
   !> &material: equation of state and strength model.
-  type(key_t), parameter, public :: MATERIAL_KEYS(33) = [ &
+  type(key_t), parameter, public :: MATERIAL_KEYS(38) = [ &
       key_t("name", "c", "required", "", &
       "name used by &block"), &
       key_t("eos", "c", "required", "", &
@@ -97,7 +98,26 @@ module material_deck
       key_t("sg_a_melt", "r", "from library", "", &
       "steinberg_guinan: Steinberg's a of the melt law, >= 0"), &
       key_t("sg_cold_energy", "l", ".false.", "", &
-      "steinberg_guinan: temperature from the energy above the cold compression energy")]
+      "steinberg_guinan: temperature from the energy above the cold compression energy"), &
+      key_t("failure", "c", "none", "", &
+      "damage model: 'johnson_cook' or 'plastic_strain' (needs a strength model)"), &
+      key_t("jc_damage", "r", "required for failure = 'johnson_cook'", "", &
+      "Johnson-Cook damage D1..D5: eps_f = [D1 + D2 exp(D3 s*)][1 + D4 ln e*][1 + D5 T*]"), &
+      key_t("failure_strain", "r", "required for failure = 'plastic_strain'", "", &
+      "equivalent plastic strain at failure, > 0"), &
+      key_t("spall_strength", "r", "none", "pressure", &
+      "a zone whose pressure falls below -spall_strength fails, > 0"), &
+      key_t("erode", "l", ".false.", "", &
+      "a failed zone is eroded (else it stays, with no shear stress and no tension)")]
+
+  !> &erosion: distortion erosion (optional, at most one group).
+  type(key_t), parameter, public :: EROSION_KEYS(3) = [ &
+      key_t("volume_ratio", "r", "0 (off)", "", &
+      "erode a zone whose V/V0 falls below this, in [0, 1)"), &
+      key_t("dt_fraction", "r", "0 (off)", "", &
+      "erode a zone whose own stable step is below this fraction of the first step, [0, 1)"), &
+      key_t("blocks", "c", "all", "", &
+      "comma-separated block names the distortion erosion applies to")]
 
   !> &block: the zones of one material.
   type(key_t), parameter, public :: BLOCK_KEYS(3) = [ &
@@ -112,7 +132,7 @@ contains
 
   !> The index-th &material into mat: library data (converted to the deck's
   !> units), then the keys given, then the checks of the EOS and strength model.
-  subroutine read_material(sect, index, mat, status, read_ok, units)
+  subroutine read_material(sect, index, mat, status, read_ok, units, fail)
     use material_flow_stress, only: steinberg_guinan_t, johnson_cook_t, SG_REFERENCE_TEMPERATURE
     character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
     integer, intent(in) :: index
@@ -120,6 +140,7 @@ contains
     type(status_t), intent(inout) :: status
     logical, intent(inout) :: read_ok !< set false when the group cannot be read
     character(len=*), intent(in) :: units !< &control units: library data are converted to it
+    type(failure_t), intent(inout), optional :: fail !< the failure keys (absent: not read)
     character(len=*), parameter :: SG_LIBS = ' (or a library with Steinberg-Guinan data: '// &
         SG_SET_NAMES//')'
     character(len=*), parameter :: JC_LIBS = ' (or a library with Johnson-Cook data: '// &
@@ -132,6 +153,9 @@ contains
     real(rk) :: jc_a, jc_b, jc_n, jc_c, jc_m, eps_dot0, t_room, t_melt
     real(rk) :: sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, sg_gamma0, sg_a_melt
     real(rk) :: lib_shear, lib_yield
+    character(len=32) :: failure
+    real(rk) :: jc_damage(5), failure_strain, spall_strength
+    logical :: erode
     integer :: ios
     logical :: found, sg_cold_energy, rho0_refused
     character(len=256) :: msg
@@ -139,7 +163,8 @@ contains
     namelist /material/ name, eos, gamma, library, rho0, c0, s1, gamma0, b, p_min, strength, &
         shear_modulus, yield_stress, hardening_modulus, cv, jc_a, jc_b, jc_n, jc_c, jc_m, &
         eps_dot0, t_room, t_melt, sg_beta, sg_n, sg_ymax, sg_eps_i, sg_a, sg_b, sg_tmelt0, &
-        sg_gamma0, sg_a_melt, sg_cold_energy
+        sg_gamma0, sg_a_melt, sg_cold_energy, failure, jc_damage, failure_strain, &
+        spall_strength, erode
 
     write(where, '(a,i0,a)') '&material(', index, ')'
     name = ''
@@ -175,6 +200,11 @@ contains
     sg_gamma0 = UNSET
     sg_a_melt = UNSET
     sg_cold_energy = .false.
+    failure = 'none'
+    jc_damage = UNSET
+    failure_strain = UNSET
+    spall_strength = UNSET
+    erode = .false.
     lib_shear = UNSET
     lib_yield = UNSET
     read(sect, nml=material, iostat=ios, iomsg=msg)
@@ -396,8 +426,69 @@ contains
       call status%add(trim(where)//': strength: '''//trim(strength)//''' is not a strength '// &
           'model (valid: none, elastic_plastic, steinberg_guinan, johnson_cook)')
     end select
+    if (present(fail)) call read_failure()
 
   contains
+
+    !> The failure keys into fail (after the strength model is known).
+    subroutine read_failure()
+      logical :: ok
+      select case (to_lower(failure))
+      case ('none')
+        if (any(jc_damage /= UNSET)) call status%add(trim(where)//': jc_damage: only '// &
+            'for failure = ''johnson_cook''')
+        if (failure_strain /= UNSET) call status%add(trim(where)//': failure_strain: '// &
+            'only for failure = ''plastic_strain''')
+      case ('johnson_cook')
+        if (any(jc_damage == UNSET)) then
+          call status%add(trim(where)//': jc_damage: five values D1, D2, D3, D4, D5 '// &
+              'required for failure = ''johnson_cook''')
+        else if (.not. (jc_damage(1) + jc_damage(2) > 0.0_rk)) then
+          call status%add(trim(where)//': jc_damage: D1 + D2 (the failure strain at '// &
+              'zero triaxiality, reference rate and room temperature) must be > 0')
+        else
+          call failure_model_new('johnson_cook', jc_damage, fail%model, ok)
+        end if
+        if (failure_strain /= UNSET) call status%add(trim(where)//': failure_strain: '// &
+            'only for failure = ''plastic_strain''')
+      case ('plastic_strain')
+        if (failure_strain == UNSET) then
+          call status%add(trim(where)//': failure_strain: required for failure = '// &
+              '''plastic_strain''')
+        else if (.not. (failure_strain > 0.0_rk)) then
+          call status%add(trim(where)//': failure_strain: must be > 0')
+        else
+          call failure_model_new('plastic_strain', [failure_strain], fail%model, ok)
+        end if
+        if (any(jc_damage /= UNSET)) call status%add(trim(where)//': jc_damage: only '// &
+            'for failure = ''johnson_cook''')
+      case default
+        call status%add(trim(where)//': failure: '''//trim(failure)//''' is not a '// &
+            'failure model (valid: none, '//FAILURE_NAMES//')')
+      end select
+      if (to_lower(failure) /= 'none' .and. mat%strength == STRENGTH_NONE) call status%add( &
+          trim(where)//': failure: needs a strength model (the damage grows with the '// &
+          'plastic strain; strength = ''none'' here)')
+      if (spall_strength /= UNSET) then
+        if (.not. (spall_strength > 0.0_rk)) call status%add(trim(where)// &
+            ': spall_strength: must be > 0 (a magnitude: the zone fails below '// &
+            '-spall_strength)')
+        fail%spall_strength = spall_strength
+      end if
+      if (erode .and. to_lower(failure) == 'none' .and. spall_strength == UNSET) &
+          call status%add(trim(where)//': erode: needs failure or spall_strength (a '// &
+          'zone is eroded when it fails)')
+      fail%erode = erode
+      ! epsdot* of Johnson-Cook's failure strain: over the strength model's
+      ! reference rate, else over 1/s in the deck's units.
+      if (mat%strength == STRENGTH_JOHNSON_COOK .and. mat%jc%eps_dot0 > 0.0_rk) then
+        fail%rate_reference = mat%jc%eps_dot0
+      else if (to_lower(units) == UNITS_SI .or. to_lower(units) == UNITS_NONE) then
+        fail%rate_reference = 1.0_rk
+      else
+        fail%rate_reference = SI_TIME
+      end if
+    end subroutine read_failure
 
     !> A model parameter after library and key: required while UNSET, else valid.
     subroutine check_key(key, value, valid, rule, model, libs)
@@ -509,5 +600,62 @@ contains
           ''' is not a material of this deck'//name_hint(material, materials%name))
     end if
   end subroutine read_block
+
+  !> &erosion (at most one): distortion erosion of the blocks named (all by
+  !> default) by relative volume and by the zone's own stable step.
+  subroutine read_erosion(sect, deck_blocks, spec, status)
+    character(len=*), intent(in) :: sect(:) !< the group's text (io_deck: unknown keys blanked)
+    type(block_spec_t), intent(in) :: deck_blocks(:) !< the deck's blocks
+    type(erosion_spec_t), intent(inout) :: spec
+    type(status_t), intent(inout) :: status
+    real(rk) :: volume_ratio, dt_fraction
+    character(len=512) :: blocks
+    character(len=NAME_LEN) :: word
+    character(len=256) :: msg
+    integer :: ios, i, j, k, n
+    namelist /erosion/ volume_ratio, dt_fraction, blocks
+    volume_ratio = 0.0_rk
+    dt_fraction = 0.0_rk
+    blocks = ''
+    read(sect, nml=erosion, iostat=ios, iomsg=msg)
+    if (ios /= 0) then
+      call status%add('&erosion: cannot read the group: '//trim(msg))
+      return
+    end if
+    spec%given = .true.
+    if (.not. (volume_ratio >= 0.0_rk .and. volume_ratio < 1.0_rk)) call status%add( &
+        '&erosion: volume_ratio: must be in [0, 1) (0: off)')
+    if (.not. (dt_fraction >= 0.0_rk .and. dt_fraction < 1.0_rk)) call status%add( &
+        '&erosion: dt_fraction: must be in [0, 1) (0: off)')
+    if (volume_ratio == 0.0_rk .and. dt_fraction == 0.0_rk) call status%add( &
+        '&erosion: volume_ratio, dt_fraction: give at least one (> 0): the group erodes '// &
+        'nothing otherwise')
+    spec%volume_ratio = volume_ratio
+    spec%dt_fraction = dt_fraction
+    allocate(spec%block(size(deck_blocks)))
+    spec%block = len_trim(blocks) == 0
+    ! Names separated by commas or blanks.
+    do i = 1, len_trim(blocks)
+      if (blocks(i:i) == ',') blocks(i:i) = ' '
+    end do
+    n = len_trim(blocks)
+    i = 1
+    do while (i <= n)
+      if (blocks(i:i) == ' ') then
+        i = i + 1
+        cycle
+      end if
+      j = index(blocks(i:n)//' ', ' ') + i - 2
+      word = blocks(i:j)
+      k = findloc(deck_blocks%name, word, dim=1)
+      if (k == 0) then
+        call status%add('&erosion: blocks: '''//trim(word)//''' is not a block of this '// &
+            'deck'//name_hint(word, deck_blocks%name))
+      else
+        spec%block(k) = .true.
+      end if
+      i = j + 1
+    end do
+  end subroutine read_erosion
 
 end module material_deck

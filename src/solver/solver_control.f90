@@ -12,12 +12,13 @@ module solver_control
   use hydro_kernels, only: DT_CFL
   use hydro_driver, only: hydro_time_step
   use core_signal, only: signal_caught
-  use parallel_env, only: par_rank, par_sum_array
+  use parallel_env, only: par_rank, par_sum_array, par_sum_exact
+  use core_exact_sum, only: exact_sum_t, exact_value
   use parallel_route, only: par_min_array
   use solver_schedule, only: schedule_t
   implicit none
   private
-  public :: control_reduce, control_stop_request, control_step_failed
+  public :: control_reduce, control_stop_request, control_step_failed, control_block_kinetic
 
   !> Failure kinds.
   integer, parameter, public :: FAIL_NONE = 0, FAIL_VOLUME = 1, FAIL_NAN = 2, FAIL_DT = 3
@@ -134,6 +135,33 @@ contains
       ctl%fail_position = payload(7:9)
     end if
   end subroutine control_reduce
+
+  !> Kinetic energy of block b (&control stop_block): each corner's eighth of
+  !> the mass of the block's owned zones at its node's velocity (as the
+  !> history's per-material columns), summed exactly (core_exact_sum), so the
+  !> stop is decided identically on every rank and rank count. Collective.
+  function control_block_kinetic(mesh, state, b) result(kinetic)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    integer, intent(in) :: b
+    real(rk) :: kinetic
+    type(exact_sum_t) :: acc(1)
+    integer :: z, k, n
+    real(rk) :: v2
+    do z = 1, mesh%nzone_owned
+      if (mesh%zone_block(z) /= b) cycle
+      v2 = 0.0_rk
+      do k = 1, 8
+        n = mesh%zone_node(k, z)
+        v2 = v2 + (state%node_velocity(1, n) * state%node_velocity(1, n) + &
+            state%node_velocity(2, n) * state%node_velocity(2, n) + &
+            state%node_velocity(3, n) * state%node_velocity(3, n))
+      end do
+      call acc(1)%add(0.0625_rk * state%zone_mass(z) * v2)
+    end do
+    call par_sum_exact(acc)
+    kinetic = exact_value(acc(1))
+  end function control_block_kinetic
 
   !> This rank's clean-stop request after a cycle, for control_reduce: rank 0
   !> checks the wall-time budget (plan%wall_stop_due) and, when due, looks for

@@ -8,16 +8,19 @@ module solver_step
   use mesh_local, only: mesh_t
   use material_table, only: material_t
   use hydro_state, only: state_t, hydro_options_t, HOURGLASS_STIFFNESS
-  use hydro_boundary, only: boundary_t
+  use hydro_boundary, only: boundary_t, boundary_prescribed
   use hydro_driver, only: material_zones_t, hydro_zone_update, hydro_forces, &
       hydro_energy_update, hydro_velocity_update, hydro_strength_update, hydro_heat_flux
-  use contact_enforce, only: contact_t, contact_apply, contact_work_update
+  use material_failure, only: failure_t, erosion_spec_t
+  use hydro_erosion, only: erosion_step
+  use contact_enforce, only: contact_t, contact_apply, contact_work_update, &
+      contact_surface_refresh, side_context_t
   use contact_monitor, only: contact_audit_run, contact_step_end, contact_audit_due
   use parallel_env, only: par_sum_exact
   use solver_schedule, only: schedule_t
   implicit none
   private
-  public :: solver_cycle, solver_lagrange_step, solver_audit
+  public :: solver_cycle, solver_lagrange_step, solver_audit, solver_contact_refresh
 
 contains
 
@@ -26,21 +29,28 @@ contains
   !> interfaces' step diagnostics, time landed on the dump time or t_end,
   !> cycle count, the stable step kept for the growth limit; then the contact
   !> audit when a global search ran or a dump ends the cycle. Sections 'step'
-  !> (with 'halo' and 'contact' within) and 'audit' of timers.
+  !> (with 'halo' and 'contact' within) and 'audit' of timers. With failure
+  !> or erosion the cycle ends with erosion_step (spall, the erosion decision,
+  !> the lists); after an erosion anywhere the contact surfaces given by
+  !> blocks follow the live zones (solver_contact_refresh).
   subroutine solver_cycle(opt, materials, mesh, state, mz, bc, ct, plan, dt, bad_half, bad, &
-      timers)
+      timers, failures, erosion, sides)
     type(hydro_options_t), intent(in) :: opt
     type(material_t), intent(in) :: materials(:)
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
-    type(material_zones_t), intent(in) :: mz
+    type(material_zones_t), intent(inout) :: mz
     type(boundary_t), intent(inout) :: bc
     type(contact_t), intent(inout) :: ct
     type(schedule_t), intent(in) :: plan
     real(rk), intent(in) :: dt
     integer, intent(out) :: bad_half, bad !< local zones with bad volume (0 = none)
     type(timers_t), intent(inout) :: timers
+    type(failure_t), intent(in) :: failures(:) !< per material
+    type(erosion_spec_t), intent(in) :: erosion !< &erosion
+    type(side_context_t), intent(in) :: sides !< blocks and closed sets (contact surfaces)
     type(exact_sum_t) :: work(2) !< boundary, contact work of the step
+    integer :: eroded
     call timers%start('step')
     state%dt = dt
     ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
@@ -49,18 +59,43 @@ contains
       bad_half = 0
     else
       call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
-          work(1), work(2), timers)
+          work(1), work(2), timers, failures)
     end if
     ! Exact sums: the works, and so the history, do not depend on the rank count.
     call par_sum_exact(work)
     state%boundary_work = state%boundary_work + exact_value(work(1))
     call contact_step_end(ct, exact_value(work(2)))
+    eroded = 0
+    if (allocated(state%zone_damage) .or. allocated(state%zone_alive)) call erosion_step(mesh, &
+        state, mz, failures, erosion, opt, bad_half, bad, eroded)
+    if (eroded > 0) call solver_contact_refresh(mesh, state, bc, ct, sides, timers)
     state%time = plan%land(state%time, dt)
     state%cycle = state%cycle + 1
     state%dt_previous = plan%dt_stable
     call timers%stop('step')
     if (contact_audit_due(ct, plan%audit_due(state%cycle))) call solver_audit(ct, state, timers)
   end subroutine solver_cycle
+
+  !> After an erosion (or a restart that finds eroded zones): the contact
+  !> surfaces given by blocks rebuilt from the live zones (section
+  !> 'contact'); nothing without an interface. The surfaces' sizes,
+  !> sagittas and audit reach are taken on the positions at t = 0, as the
+  !> set-up takes them: so they depend on the live zones only, and a
+  !> restart, which rebuilds them from the dump's liveness, gets the same
+  !> (positions of the last erosion would not be in the dump). Collective.
+  subroutine solver_contact_refresh(mesh, state, bc, ct, sides, timers)
+    type(mesh_t), intent(in) :: mesh
+    type(state_t), intent(in) :: state
+    type(boundary_t), intent(in) :: bc
+    type(contact_t), intent(inout) :: ct
+    type(side_context_t), intent(in) :: sides
+    type(timers_t), intent(inout) :: timers
+    if (ct%npair == 0) return
+    call timers%start('contact')
+    call contact_surface_refresh(ct, mesh, state%node_position_initial, state%node_mass, &
+        state%zone_alive > 0.0_rk, sides, boundary_prescribed(bc, size(state%node_mass)))
+    call timers%stop('contact')
+  end subroutine solver_contact_refresh
 
   !> The contact audit at x^n of the state (section 'audit' of timers); its
   !> gaps stay in the contact for the dumps. Nothing without an interface.
@@ -79,7 +114,7 @@ contains
   !> forces at t^n+1/2, contact on the final update (its work), final
   !> velocities, positions, energies, deviatoric stress and zone state.
   subroutine solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
-      work, contact_work, timers)
+      work, contact_work, timers, failures)
     type(hydro_options_t), intent(in) :: opt
     type(material_t), intent(in) :: materials(:)
     type(mesh_t), intent(inout) :: mesh
@@ -92,6 +127,7 @@ contains
     type(exact_sum_t), intent(inout) :: work !< + boundary work of the step (local terms)
     type(exact_sum_t), intent(inout) :: contact_work !< + contact work of the step (local terms)
     type(timers_t), intent(inout) :: timers !< sections 'halo' and 'contact'
+    type(failure_t), intent(in), optional :: failures(:) !< per material: damage models
     logical :: strength
 
     call save_step_start(mesh, state)
@@ -158,7 +194,8 @@ contains
     if (strength) then
       state%zone_stress_half = state%zone_stress
       call hydro_strength_update(mesh, state, materials, mz, &
-          state%node_velocity_half, dt, state%zone_stress_half, state%zone_stress, .true.)
+          state%node_velocity_half, dt, state%zone_stress_half, state%zone_stress, .true., &
+          failures)
     end if
     if (opt%hourglass == HOURGLASS_STIFFNESS) state%zone_hourglass = &
         state%zone_hourglass_new

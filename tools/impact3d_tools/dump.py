@@ -10,9 +10,13 @@ Layout (docs: docs/design.md, section 6; root attribute `format_version`):
     /zones/density, specific_internal_energy, pressure, viscosity,
           sound_speed, volume, mass                     nzone each
     optional: /zones/deviatoric_stress (nzone x 6), /zones/plastic_strain,
+              /zones/damage (failure), /zones/alive (erosion: 1 live, 0
+              eroded), /mesh/live_connectivity (erosion: nzone x 8, an
+              eroded zone's corners all its first node),
               /restart/..., /run/... (not read here)
 
 load(path) returns a flat dict: 'coordinates', 'connectivity', 'block',
+'live_connectivity' (erosion only),
 'node_velocity', 'node_mass', 'density', 'specific_internal_energy',
 'pressure', 'viscosity', 'sound_speed', 'volume', 'mass' (zone mass), any
 other dataset under /zones by its name, and 'attrs' (dict of root attributes
@@ -27,7 +31,7 @@ import h5py
 import numpy as np
 
 MESH_FIELDS = {"coordinates": "coordinates", "connectivity": "connectivity",
-               "block": "block"}
+               "block": "block", "live_connectivity": "live_connectivity"}
 NODE_FIELDS = {"velocity": "node_velocity", "mass": "node_mass"}
 
 
@@ -78,6 +82,8 @@ def load(path):
                          "or /mesh/connectivity)")
     data["coordinates"] = _rows(data["coordinates"], 3).astype(float)
     data["connectivity"] = _rows(data["connectivity"], 8).astype(np.int64)
+    if "live_connectivity" in data:
+        data["live_connectivity"] = _rows(data["live_connectivity"], 8).astype(np.int64)
     if "node_velocity" in data:
         data["node_velocity"] = _rows(data["node_velocity"], 3).astype(float)
     if "deviatoric_stress" in data:
@@ -90,7 +96,7 @@ def load(path):
     if "mass" not in data and "density" in data and "volume" in data:
         data["mass"] = data["density"] * data["volume"]
     for key, value in data.items():
-        if key in ("attrs", "coordinates", "connectivity", "node_velocity",
+        if key in ("attrs", "coordinates", "connectivity", "live_connectivity", "node_velocity",
                    "node_mass", "deviatoric_stress"):
             continue
         if np.ndim(value) >= 1 and np.shape(value)[0] != nzone:

@@ -724,6 +724,68 @@ def build_cases():
                   append("&contact surface_a = 'zmaxx', surface_b = 'xmin', method = 'dam' /\n"),
                   ["&contact(1): surface_a: 'zmaxx' is not a face set of the mesh (valid: "
                    "xmin, xmax, ymin, ymax, zmin, zmax; did you mean 'zmax'?)"], max_errors=1))
+    # --- failure, erosion, the kinetic-energy stop (issue 32) -------------------
+    gas = "name = 'gas', eos = 'ideal_gas', gamma = 1.4"
+    ep = ("name = 'gas', eos = 'mie_gruneisen', rho0 = 1.0, c0 = 1.0, s1 = 1.0, gamma0 = 0.4, "
+          "strength = 'elastic_plastic', shear_modulus = 0.3, yield_stress = 0.003")
+    c.append(Case("failure_unknown_model", sub(gas, ep + ", failure = 'gurson'"),
+                  ["&material(1): failure: 'gurson' is not a failure model (valid: none, "
+                   "johnson_cook, plastic_strain)"]))
+    c.append(Case("failure_without_strength", sub(gas, gas + ", failure = 'plastic_strain', "
+                                                   "failure_strain = 0.3"),
+                  ["&material(1): failure: needs a strength model"]))
+    c.append(Case("failure_jc_damage_missing", sub(gas, ep + ", failure = 'johnson_cook', "
+                                                   "jc_damage = 0.05, 3.44"),
+                  ["&material(1): jc_damage: five values D1, D2, D3, D4, D5 required for "
+                   "failure = 'johnson_cook'"]))
+    c.append(Case("failure_jc_damage_nonpositive", sub(gas, ep + ", failure = 'johnson_cook', "
+                                                       "jc_damage = -1.0, 0.5, -1.0, 0.0, 0.0"),
+                  ["&material(1): jc_damage: D1 + D2 (the failure strain at zero triaxiality"]))
+    c.append(Case("failure_jc_damage_without_model", sub(gas, ep + ", jc_damage = 0.05, 3.44, "
+                                                         "-2.12, 0.002, 0.61"),
+                  ["&material(1): jc_damage: only for failure = 'johnson_cook'"]))
+    c.append(Case("failure_strain_missing", sub(gas, ep + ", failure = 'plastic_strain'"),
+                  ["&material(1): failure_strain: required for failure = 'plastic_strain'"]))
+    c.append(Case("failure_strain_nonpositive", sub(gas, ep + ", failure = 'plastic_strain', "
+                                                    "failure_strain = 0.0"),
+                  ["&material(1): failure_strain: must be > 0"]))
+    c.append(Case("failure_strain_without_model", sub(gas, ep + ", failure_strain = 0.3"),
+                  ["&material(1): failure_strain: only for failure = 'plastic_strain'"]))
+    c.append(Case("spall_strength_negative", sub(gas, ep + ", spall_strength = -0.01"),
+                  ["&material(1): spall_strength: must be > 0"]))
+    c.append(Case("erode_without_failure", sub(gas, ep + ", erode = .true."),
+                  ["&material(1): erode: needs failure or spall_strength"]))
+    c.append(Case("erosion_bad_values", append("&erosion volume_ratio = 1.5, dt_fraction = -0.1, "
+                                               "blocks = 'tube, tubes' /\n"),
+                  ["&erosion: volume_ratio: must be in [0, 1)",
+                   "&erosion: dt_fraction: must be in [0, 1)",
+                   "&erosion: blocks: 'tubes' is not a block of this deck"], min_errors=3))
+    c.append(Case("erosion_nothing", append("&erosion blocks = 'tube' /\n"),
+                  ["&erosion: volume_ratio, dt_fraction: give at least one (> 0)"]))
+    c.append(Case("erosion_twice", append("&erosion volume_ratio = 0.1 /\n"
+                                          "&erosion volume_ratio = 0.2 /\n"),
+                  ["&erosion: group given more than once"]))
+    c.append(Case("stop_block_unknown", sub("  cfl = 0.5\n", "  cfl = 0.5\n  stop_block = 'tubo', "
+                                             "stop_kinetic_fraction = 0.1\n"),
+                  ["&control: stop_block: 'tubo' is not a block of this deck"]))
+    c.append(Case("stop_fraction_missing", sub("  cfl = 0.5\n", "  cfl = 0.5\n  stop_block = "
+                                                "'tube'\n"),
+                  ["&control: stop_kinetic_fraction: required with stop_block"]))
+    c.append(Case("stop_fraction_range", sub("  cfl = 0.5\n", "  cfl = 0.5\n  stop_block = "
+                                              "'tube', stop_kinetic_fraction = 1.5\n"),
+                  ["&control: stop_kinetic_fraction: must be in (0, 1)"]))
+    c.append(Case("stop_fraction_without_block", sub("  cfl = 0.5\n", "  cfl = 0.5\n  "
+                                                      "stop_kinetic_fraction = 0.1\n"),
+                  ["&control: stop_kinetic_fraction: only with stop_block"]))
+    c.append(Case("failure_erosion_valid",
+                  chain(sub(gas, ep + ", failure = 'johnson_cook', jc_damage = 0.05, 3.44, "
+                                      "-2.12, 0.002, 0.61, spall_strength = 0.01, erode = .true."),
+                        sub("  cfl = 0.5\n", "  cfl = 0.5\n  stop_block = 'tube', "
+                                              "stop_kinetic_fraction = 0.1\n"),
+                        append("&erosion volume_ratio = 0.1, dt_fraction = 0.01, "
+                               "blocks = 'tube' /\n"),
+                        sub("  t_end = 0.05\n", "  t_end = 1.0e-3\n")),
+                  [], expect_code=0))
     c.append(Case("valid_base_deck", lambda t: t, [], expect_code=0))
     return c
 
