@@ -68,7 +68,6 @@ contains
     real(rk), allocatable :: pair_work(:)
     type(side_context_t) :: sides
     logical :: exists
-    integer :: n
     if (len_trim(restart) > 0) then
       exists = .false.
       if (par_rank() == 0) inquire(file=restart, exist=exists)
@@ -213,7 +212,7 @@ contains
     type(block_part_holder_t), allocatable :: curved(:)
     type(mesh_range_t) :: range
     type(distribute_stats_t) :: stats
-    integer :: k, n, b, nx, ny, nz, lo, hi, z, f, m
+    integer :: k, n, b, nx, ny, nz, lo, hi, z, m
     integer(i8) :: nzone, nnode, zone0, node0
     integer, allocatable :: sets(:, :)
     integer(i8), allocatable :: ord0(:, :), counts(:)
