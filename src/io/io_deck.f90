@@ -239,11 +239,15 @@ contains
         case ('probe')
           counts(10) = counts(10) + 1
           call read_probe(sect, counts(10), config, status)
-        case ('erosion')
-          if (counts(11) == 0) call read_erosion(sect, config%blocks, config%erosion, status)
-          counts(11) = counts(11) + 1
         end select
       end associate
+    end do
+    ! &erosion names blocks, which may come after it in the deck.
+    do ig = 1, ngroup
+      if (trim(groups(ig)%name) /= 'erosion') cycle
+      if (counts(11) == 0) call read_erosion(sections(ig)%text, config%blocks, config%erosion, &
+          status)
+      counts(11) = counts(11) + 1
     end do
     if (len_trim(config%stop_block) > 0) then
       config%stop_block_index = findloc(config%blocks%name, config%stop_block, dim=1)
