@@ -38,3 +38,14 @@ foreach(m dlm dam)
     --pair interface --tol 1e-12 --audit --audit-after 1.0 --max-work 1e-10
     --momentum-tol 1e-12 --momentum-axes z --np 2)
 endforeach()
+
+# DAM with its default settings on the fine Al-on-steel deck (to 1.5 us,
+# 2 ranks; issue 31 item 3): at every audit no node of either surface beyond
+# its default tolerance and none unheld (one pass: 62 steel nodes, up to
+# 6.6e-3 cm; docs/contact.md, 6.2); energy balance 1e-12; total z momentum
+# within 1e-12 (no boundary acts along z; DAM returns each slave's momentum
+# defect to its group); contact work never positive beyond 1e-10 of E0.
+impact3d_check(long/al_on_steel_dam_audit "long;contact;solids" impact
+  --workdir ${WORK}/al_on_steel_dam_audit --deck ${PROBLEMS}/al_on_steel/al_on_steel_dam_fine.nml
+  --pair interface --tol 1e-12 --audit --max-work 1e-10 --momentum-tol 1e-12
+  --momentum-axes z --np 2)
