@@ -23,7 +23,7 @@ module contact_dam
   use contact_search, only: primary_pair_t
   use contact_state, only: FACING, AREA_TOLERANCE, PAIR_NODE_SEGMENT, SURFACE_LEN, &
       surface_geometry_t, interface_t, contact_t, contact_spec_t, contact_method_t, capture_of, &
-      geometry_update
+      geometry_update, recovery_allowance
   use contact_kernels, only: dam_merged_normal_velocity, dam_put_back_velocity, &
       dam_friction_velocity
   implicit none
@@ -37,6 +37,10 @@ module contact_dam
   !> Values per owned node after the matching: velocity (3), matching
   !> normal (3), slave mass merged (1).
   integer, parameter :: MATCHED_WIDTH = 7
+  !> Fraction of a slave's penetration beyond its allowance removed per
+  !> cycle (the put-back's separating speed; docs/contact.md, 6, step 4):
+  !> DLM's default recovery.
+  real(rk), parameter :: DAM_RECOVERY = 0.2_rk
 
   !> DAM: the method and its caches on this part.
   type, extends(contact_method_t), public :: dam_t
@@ -44,6 +48,8 @@ module contact_dam
     logical :: symmetric = .false. !< a reverse pass with the sides swapped (deck)
     type(primary_pair_t), allocatable :: primary(:) !< the cycle's primary pairs
     real(rk), allocatable :: rbf(:, :) !< (4, nprimary) put-back weights
+    real(rk), allocatable :: excess(:) !< (nprimary) penetration beyond the allowance at x^n
+    real(rk), allocatable :: recover(:) !< (nprimary) the stage's separating speed
     integer, allocatable :: ex_start(:) !< (nprimary + 1) exchange entries of a pair
     integer, allocatable :: ex_master(:) !< master node of an exchange entry
     real(rk), allocatable :: ex_real(:, :) !< (3, nex) shares wm, ws and overlap s0
@@ -205,8 +211,9 @@ contains
     capture = capture_of(p, 2.0_rk * ct%speed, dt)
     call primary_pairs(ct%x, p%b, p%pairs, capture, 0.5_rk * p%size, m_%primary, &
         p%offset(ct%all_of))
-    if (allocated(m_%rbf)) deallocate(m_%rbf, m_%ex_start)
-    allocate(m_%rbf(4, size(m_%primary)), m_%ex_start(size(m_%primary) + 1))
+    if (allocated(m_%rbf)) deallocate(m_%rbf, m_%ex_start, m_%excess, m_%recover)
+    allocate(m_%rbf(4, size(m_%primary)), m_%ex_start(size(m_%primary) + 1), &
+        m_%excess(size(m_%primary)), m_%recover(size(m_%primary)))
     if (.not. allocated(m_%ex_master)) allocate(m_%ex_master(64), m_%ex_real(3, 64))
     nex = 0
     associate(gs => p%ga, gm => p%gb)
@@ -216,6 +223,11 @@ contains
         do k = 1, 4
           pos(:, k) = ct%x(:, p%b%segments(k, m_%primary(q)%segment))
         end do
+        ! Penetration beyond the initial offset the deck kept and the
+        ! allowance (the slave's nodal area against the master segment's).
+        m_%excess(q) = max(-m_%primary(q)%gap - p%offset(ct%all_of(n)) - recovery_allowance( &
+            p%spec%penetration_tolerance, gs%nodal_area(n), sum(gm%area(:, &
+            m_%primary(q)%segment)), p%lsag_b(m_%primary(q)%segment)), 0.0_rk)
         if (m_%slave_normal) call use_slave_normal(p%a, gs, n, m_%primary(q)%normal)
         call rbf_weights(pos, ct%x(:, n), m_%primary(q)%normal, m_%rbf(:, q), ok)
         if (.not. ok) call bilinear_shape(m_%primary(q)%xi, m_%primary(q)%eta, m_%rbf(:, q))
@@ -312,7 +324,7 @@ contains
     real(rk), intent(in) :: dt !< the stage's step
     logical, intent(in) :: final !< the corrector (geometry cached by the predictor)
     type(records_t), intent(inout) :: out !< nv = 10: mass, force, momentum, master normal
-    real(rk) :: nrm(3), shape(4), am, vm, as, vs, gfree, wm, ws, s0
+    real(rk) :: nrm(3), shape(4), am, vm, as, vs, gfree, wm, ws, s0, step
     real(rk) :: buf(10)
     integer(i8) :: base
     integer :: q, n, c, e, m
@@ -322,10 +334,16 @@ contains
     if (.not. final .or. .not. allocated(m_%primary)) call dam_geometry(m_, ct, p, &
         merge(dt, 2.0_rk * dt, final))
 
-    ! Which slave nodes are enforced: the free motion would close the gap.
+    ! Which slave nodes are enforced: the free motion would close the gap,
+    ! or leave it deeper than the allowance. A slave beyond its allowance is
+    ! put back with the separating speed that removes DAM_RECOVERY of the
+    ! excess over the cycle (taken over the stable step, as DLM's recovery:
+    ! a short landing step does not fling it out).
+    step = merge(dt, 2.0_rk * dt, final)
     m_%enforced = .false.
     do q = 1, size(m_%primary)
       n = m_%primary(q)%node
+      m_%recover(q) = DAM_RECOVERY * m_%excess(q) * ct%landing / step
       nrm = m_%primary(q)%normal
       call bilinear_shape(m_%primary(q)%xi, m_%primary(q)%eta, shape)
       am = 0.0_rk
@@ -341,8 +359,8 @@ contains
       ! Release (3.7): the free motion at t^n+1 separates the slave from the
       ! master (tension); a residual penetration does not hold it. This is
       ! the rule of the unilateral rigid wall, so the mirror test holds.
-      if (vs - vm + dt * (as - am) > 0.0_rk) cycle
-      if (gfree < 0.0_rk) m_%enforced(n) = .true.
+      if (vs - vm + dt * (as - am) > m_%recover(q)) cycle
+      if (gfree < 0.0_rk .or. m_%excess(q) > 0.0_rk) m_%enforced(n) = .true.
     end do
 
     ! Exchange over the cached facet overlaps.
@@ -422,6 +440,7 @@ contains
         target = target + m_%rbf(c, q) * dot_product(vm(:, p%b%segments(c, &
             m_%primary(q)%segment)), nrm)
       end do
+      target = target + m_%recover(q)
       vnew = dam_put_back_velocity(vm(:, n), nrm, target)
       vput = vnew
       if (p%spec%friction > 0.0_rk) then

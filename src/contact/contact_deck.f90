@@ -49,7 +49,7 @@ module contact_deck
       "penetration at set-up beyond the tolerance: 'error', 'adjust' or 'ignore'"), &
       key_t("friction", "r", "0", "", &
       "Coulomb friction coefficient mu >= 0 (finite), both methods"), &
-      key_t("symmetric", "l", ".false.", "", &
+      key_t("symmetric", "l", ".true.", "", &
       "DAM: a second pass with master and slave swapped (self-contact: the other side)")]
 
 contains

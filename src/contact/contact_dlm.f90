@@ -46,7 +46,8 @@ module contact_dlm
       SEGMENT_FACET_COUNT
   use contact_records, only: records_t, add_record
   use contact_state, only: FACING, FACING_SURFACES, AREA_TOLERANCE, PAIR_SEGMENTS, &
-      SURFACE_LEN, interface_t, contact_t, contact_spec_t, contact_method_t, geometry_update
+      SURFACE_LEN, interface_t, contact_t, contact_spec_t, contact_method_t, geometry_update, &
+      recovery_allowance
   use contact_kernels, only: dlm_pair_force, dlm_pair_friction, KERNEL_COORDINATE, &
       KERNEL_VELOCITY, KERNEL_COMBINED
   implicit none
@@ -55,13 +56,6 @@ module contact_dlm
   !> Default fraction of a facet pair's penetration removed per step in the
   !> velocity form (see dlm_step).
   real(rk), parameter, public :: DLM_DEFAULT_RECOVERY = 0.2_rk
-  !> Share of the audit's tolerance (contact_audit) a facet pair may keep
-  !> without recovery: the recovery starts well below the tolerance, so a
-  !> pair it holds keeps a margin for one step's overshoot.
-  real(rk), parameter :: ALLOWANCE_SHARE = 0.4_rk
-  !> The size part of that allowance, ALLOWANCE_SHARE x SIZE_FRACTION (0.05)
-  !> of the size (square root of the area) of the smaller of the two segments.
-  real(rk), parameter :: RECOVERY_ALLOWANCE = 0.02_rk
 
   !> Rounds of a stage and their record layouts: the gated shares (one
   !> value, the node's share of the pair), then the pair forces (a 3-vector).
@@ -274,12 +268,8 @@ contains
         ! fraction of the segments' size, or the faceting sagitta, the
         ! mismatch of two faceted versions of one curved surface, left
         ! alone), plus the initial penetration the deck kept.
-        if (p%spec%penetration_tolerance > 0.0_rk) then
-          allowance = ALLOWANCE_SHARE * p%spec%penetration_tolerance
-        else
-          allowance = max(RECOVERY_ALLOWANCE * sqrt(min(sum(ga%area(:, sa)), &
-              sum(gb%area(:, sb)))), ALLOWANCE_SHARE * max(p%lsag_a(sa), p%lsag_b(sb)))
-        end if
+        allowance = recovery_allowance(p%spec%penetration_tolerance, sum(ga%area(:, sa)), &
+            sum(gb%area(:, sb)), max(p%lsag_a(sa), p%lsag_b(sb)))
         call project_facets(ga%facets(:, :, :, sa), origin, t1, t2, a2, box_a)
         call project_facets(gb%facets(:, :, :, sb), origin, t1, t2, b2, box_b)
         do i = 1, SEGMENT_FACET_COUNT

@@ -20,7 +20,7 @@ module contact_state
   use contact_records, only: records_t
   implicit none
   private
-  public :: capture_of, key_node, geometry_free, geometry_update
+  public :: capture_of, key_node, geometry_free, geometry_update, recovery_allowance
 
   !> Pair kinds of a method's search (contact_method_t%pair_kind): segment
   !> pairs (a segment of a, a segment of b: keyed by the a-segment's first
@@ -63,6 +63,14 @@ module contact_state
   !> segment pair (relative size tilt x penetration / zone, ~1e-12 on the
   !> mirror test). They carry less than this share of a node's force.
   real(rk), parameter, public :: AREA_TOLERANCE = 1.0e-8_rk
+  !> Share of the audit's tolerance (contact_audit) a pair may keep without
+  !> recovery (DLM's facet pairs, DAM's slave nodes): the recovery starts well
+  !> below the tolerance, so a pair it holds keeps a margin for one step's
+  !> overshoot.
+  real(rk), parameter :: ALLOWANCE_SHARE = 0.4_rk
+  !> The size part of that allowance, ALLOWANCE_SHARE x SIZE_FRACTION (0.05)
+  !> of the size (square root of the area) of the smaller of the two sides.
+  real(rk), parameter :: SIZE_ALLOWANCE = 0.02_rk
   !> A node whose motion is prescribed (a velocity boundary: a driven platen,
   !> a welded end) is rigid for the contact: its mass is scaled by this
   !> factor, so a merge or a multiplier changes its velocity by 1e-12 of the
@@ -112,7 +120,7 @@ module contact_state
     !> Coulomb friction coefficient (0: frictionless, the friction code is skipped)
     real(rk) :: friction = 0.0_rk
     !> DAM: a second pass with master and slave swapped (contact_enforce)
-    logical :: symmetric = .false.
+    logical :: symmetric = .true.
   end type contact_spec_t
 
   !> Geometry of one surface at x^n, computed once per cycle (in the
@@ -370,6 +378,23 @@ module contact_state
 
 
 contains
+
+  !> Penetration a pair keeps without recovery: ALLOWANCE_SHARE of the deck's
+  !> penetration_tolerance, or (automatic) of the audit's tolerance: the
+  !> larger of SIZE_ALLOWANCE x the smaller side's size and
+  !> ALLOWANCE_SHARE x the faceting sagitta (the mismatch of two faceted
+  !> versions of one curved surface, left alone; docs/contact.md, 9.3).
+  pure real(rk) function recovery_allowance(tolerance, area_a, area_b, sagitta)
+    real(rk), intent(in) :: tolerance !< the deck's (0 = automatic)
+    real(rk), intent(in) :: area_a, area_b !< the two sides' areas
+    real(rk), intent(in) :: sagitta !< the larger faceting sagitta of the two
+    if (tolerance > 0.0_rk) then
+      recovery_allowance = ALLOWANCE_SHARE * tolerance
+    else
+      recovery_allowance = max(SIZE_ALLOWANCE * sqrt(min(area_a, area_b)), &
+          ALLOWANCE_SHARE * sagitta)
+    end if
+  end function recovery_allowance
 
   !> A surface's facets, facet normals and areas, segment normals and nodal
   !> areas at x (once per cycle; every segment pair then reads them).

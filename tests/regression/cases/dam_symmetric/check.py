@@ -1,13 +1,15 @@
 #!/usr/bin/python3
-"""DAM's second pass (symmetric = .true.) on the coarse planar Sedov split.
+"""DAM's second pass (symmetric = .true., the default) on the coarse planar
+Sedov split: the deck as it is (default settings) against one pass
+(symmetric = .false.).
 
 Usage: check.py EXE WORKDIR [--mpiexec mpirun --np 1]
 
 Criteria (every history row, cycle 0 to t = 1):
-1. One pass (the deck as it is): some master node ends beyond the audit's
+1. One pass (symmetric = .false.): some master node ends beyond the audit's
    tolerance (x06_audit_count_b > 0 at some row). This is the defect the
    second pass is for; if it is gone, the case tests nothing and must change.
-2. Two passes: no node of either side beyond its tolerance
+2. Two passes (the default): no node of either side beyond its tolerance
    (x06_audit_count_a = x06_audit_count_b = 0) and no unheld node
    (x06_unheld = 0): counts, exact.
 3. Two passes: the contact does no positive work (x06_work <= 0 at every
@@ -57,9 +59,9 @@ def run(a, name, symmetric):
     shutil.rmtree(wd, ignore_errors=True)
     os.makedirs(wd)
     text = open(DECK).read()
-    if symmetric:
+    if not symmetric:
         assert "method = 'dam'" in text
-        text = text.replace("method = 'dam'", "method = 'dam', symmetric = .true.")
+        text = text.replace("method = 'dam'", "method = 'dam', symmetric = .false.")
     with open(os.path.join(wd, "deck.nml"), "w") as f:
         f.write(text)
     cmd = [a.exe, "deck.nml"]
