@@ -13,7 +13,7 @@
 !> m_z/8 of the block's zones (the lumping of the nodal masses), so that the
 !> blocks add up to the totals of the nodal masses.
 module app_summary
-  use core_kinds, only: rk, i8
+  use core_kinds, only: rk, ik, i8
   use core_status, only: status_t
   use core_text, only: to_text
   use core_unit_checks, only: speed_limit, speed_limit_text, speed_mistake, brief_text
@@ -25,6 +25,9 @@ module app_summary
       material_library_source
   use hydro_state, only: state_t
   use contact_surface, only: set_names_of
+  use contact_sides, only: side_context_t, side_is_blocks, blocks_of, block_faces
+  use core_sort, only: sort_unique
+  use hydro_boundary, only: BC_SYMMETRY, BC_WALL
   use io_deck, only: config_t
   use io_probe, only: probes_t
   use parallel_env, only: par_rank, par_sum_array, par_max
@@ -132,10 +135,12 @@ contains
     integer, parameter :: NB = 7 !< per block: zones, volume, mass, momentum(3), kinetic energy
     real(rk), allocatable :: sums(:, :), sets(:, :), nodes(:), probe_data(:, :), flat(:)
     real(rk) :: corner_mass, v(3)
-    integer :: nblock, z, k, b, s, f, i, j
+    integer :: nblock, z, k, b, s, f, i, j, count_nodes
     logical, allocatable :: on_set(:)
     character(len=:), allocatable :: text, unit_l, unit_m, unit_v, unit_e
     character(len=64), allocatable :: surface_names(:)
+    character(len=:), allocatable :: other
+    type(side_context_t) :: sides
 
     allocate(lines(0))
     unit_l = unit_of(config%units, 'length')
@@ -176,15 +181,27 @@ contains
     end do
     if (mesh%nset > 0) call par_sum_array(sets(1, :))
     if (mesh%nset > 0) call par_sum_array(sets(2, :))
-    ! Interfaces: owned nodes on each side's face sets.
+    ! Interfaces: owned nodes on each side's face sets; for a side of
+    ! blocks, the distinct nodes of the blocks' exterior faces (on every rank).
     allocate(nodes(2 * size(config%contacts)), on_set(mesh%nnode))
     nodes = 0.0_rk
+    sides%block_names = config%blocks(:)%name
+    sides%closed_sets = pack(config%boundaries(:)%set, config%boundaries(:)%kind == BC_SYMMETRY &
+        .or. config%boundaries(:)%kind == BC_WALL)
     do i = 1, size(config%contacts)
       do j = 1, 2
         if (j == 1) then
           surface_names = set_names_of(config%contacts(i)%surface_a)
+          other = trim(config%contacts(i)%surface_b)
         else
           surface_names = set_names_of(config%contacts(i)%surface_b)
+          other = trim(config%contacts(i)%surface_a)
+        end if
+        if (side_is_blocks(set_or_blocks(i, j))) then
+          ! (collective: every rank counts, rank 0's count goes into the sum)
+          count_nodes = block_side_nodes()
+          if (par_rank() == 0) nodes(2 * (i - 1) + j) = real(count_nodes, rk)
+          cycle
         end if
         on_set = .false.
         do s = 1, mesh%nset
@@ -268,6 +285,41 @@ contains
       write(buffer, RF) x
       t = trim(adjustl(buffer))
     end function real_text
+
+    !> The surface list of side jj of interface ii.
+    function set_or_blocks(ii, jj) result(list)
+      integer, intent(in) :: ii, jj
+      character(len=:), allocatable :: list
+      if (jj == 1) then
+        list = trim(config%contacts(ii)%surface_a)
+      else
+        list = trim(config%contacts(ii)%surface_b)
+      end if
+    end function set_or_blocks
+
+    !> Distinct nodes of the exterior faces of side j of interface i's blocks.
+    integer function block_side_nodes() result(n)
+      type(status_t) :: ignored
+      integer, allocatable :: blocks(:), facing(:)
+      integer(i8), allocatable :: ids(:), unique_ids(:)
+      integer(ik), allocatable :: face_nodes(:, :)
+      logical, allocatable :: live(:)
+      integer :: m
+      character(len=:), allocatable :: this
+      this = set_or_blocks(i, j)
+      call blocks_of(this, sides, 'summary', blocks, ignored)
+      allocate(facing(0))
+      if (side_is_blocks(other) .and. other /= this) then
+        call blocks_of(other, sides, 'summary', facing, ignored)
+        facing = pack(facing, [(all(blocks /= facing(m)), m = 1, size(facing))])
+      end if
+      allocate(live(mesh%nzone))
+      live = .true.
+      call block_faces(mesh, live, blocks, facing, sides, ids, face_nodes)
+      unique_ids = int(reshape(face_nodes, [size(face_nodes)]), i8)
+      call sort_unique(unique_ids)
+      n = size(unique_ids)
+    end function block_side_nodes
 
   end subroutine model_summary
 

@@ -67,7 +67,7 @@ module contact_enforce
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
-  public :: contact_report
+  public :: contact_report, contact_active_flags, contact_active_restore
   ! The state the application and the deck reader see.
   public :: CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, contact_t
   public :: side_context_t
@@ -473,7 +473,7 @@ contains
         end do
       end do
     end if
-    if (final) call reduce_diagnostics(ct, has, dt)
+    if (final) call reduce_diagnostics(ct, has)
     call lap(ct%migrate_seconds)
 
   contains
@@ -548,10 +548,9 @@ contains
 
   !> Diagnostics of the step from every part's sums; released nodes from the
   !> owners. Collective.
-  subroutine reduce_diagnostics(ct, has, dt)
+  subroutine reduce_diagnostics(ct, has)
     type(contact_t), intent(inout) :: ct
     logical, intent(in) :: has(:, :)
-    real(rk), intent(in) :: dt
     real(rk) :: sums(8), pen_max
     integer :: k
     do k = 1, ct%npair
@@ -674,5 +673,41 @@ contains
 
 
 
+
+  !> Per local node (nnode) the interfaces whose force it carried in the
+  !> last step, bit k - 1 for interface k, as a real (restart state: the
+  !> history's released count and the audit's unheld nodes read it); empty
+  !> without interfaces.
+  function contact_active_flags(ct, nnode) result(flags)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: nnode
+    real(rk), allocatable :: flags(:)
+    integer :: i, k
+    if (ct%npair == 0 .or. .not. allocated(ct%own_local)) then
+      allocate(flags(0))
+      return
+    end if
+    allocate(flags(nnode))
+    flags = 0.0_rk
+    do k = 1, ct%npair
+      do i = 1, ct%nown
+        if (ct%pairs(k)%was_active(i)) flags(ct%own_local(i)) = flags(ct%own_local(i)) + &
+            real(2_i8**(k - 1), rk)
+      end do
+    end do
+  end function contact_active_flags
+
+  !> The flags of contact_active_flags back into the interfaces.
+  subroutine contact_active_restore(ct, flags)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: flags(:) !< (nnode local)
+    integer :: i, k
+    if (ct%npair == 0 .or. .not. allocated(ct%own_local)) return
+    do k = 1, ct%npair
+      do i = 1, ct%nown
+        ct%pairs(k)%was_active(i) = btest(nint(flags(ct%own_local(i)), i8), k - 1)
+      end do
+    end do
+  end subroutine contact_active_restore
 
 end module contact_enforce

@@ -38,7 +38,7 @@ contains
   !> units is the run's unit system (&control units): the root attribute
   !> units, and each field's units attribute from it.
   subroutine dump_write(path, title, units, block_names, mesh, state, info, status, &
-      contact_gap, contact_work, pair_work)
+      contact_gap, contact_work, pair_work, contact_active)
     character(len=*), intent(in) :: path, title, units, block_names
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(in) :: state
@@ -48,6 +48,9 @@ contains
     real(rk), intent(in), optional :: contact_gap(:)
     real(rk), intent(in), optional :: contact_work !< work of the contact forces so far
     real(rk), intent(in), optional :: pair_work(:) !< the same per contact interface
+    !> (nnode local) per node the interfaces it carried force of in the last
+    !> step, bit k - 1 for interface k (restart state of the contact)
+    real(rk), intent(in), optional :: contact_active(:)
     real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, z, k
@@ -207,6 +210,14 @@ contains
       call units_of('/restart/initial_position', 'length')
     end if
 
+    if (present(contact_active)) then
+      if (size(contact_active) > 0) then
+        call mesh%node_io%to_block(reshape(contact_active(1:nno), [1, nno]), nblock1)
+        call h5_write_real_vector(file, '/restart/contact_active', nblock1(1, :), &
+            mesh%nnode_global, node_first, e, msg)
+        if (e /= 0 .and. ierr == 0) ierr = e
+      end if
+    end if
     if (allocated(state%zone_alive)) then
       call h5_write_attr_real(file, '/restart', 'dt_reference', state%dt_reference, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
@@ -591,13 +602,15 @@ contains
 
   !> Read a dump into the state of a mesh built from the same deck: positions,
   !> velocities, masses, energies, restart state; ghosts refreshed by halos.
-  subroutine dump_read(path, mesh, state, status, contact_work, pair_work)
+  subroutine dump_read(path, mesh, state, status, contact_work, pair_work, contact_active)
     character(len=*), intent(in) :: path
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
     type(status_t), intent(inout) :: status
     real(rk), intent(inout), optional :: contact_work !< work of the contact forces so far
     real(rk), intent(inout), optional :: pair_work(:) !< the same per contact interface
+    !> (nnode local) dump_write's contact_active (zero where the dump has none)
+    real(rk), intent(inout), optional :: contact_active(:)
     real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, version, icycle, ncomp, k
@@ -706,6 +719,18 @@ contains
       call mesh%zone_io%from_block(zblock, zlocal(:, 1:nzo))
       call mesh%zone_halo%exchange(zlocal)
       state%zone_hourglass = reshape(zlocal, [3, 4, mesh%nzone])
+    end if
+    if (present(contact_active)) then
+      contact_active = 0.0_rk
+      call h5_path_exists(file, '/restart/contact_active', there, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      if (e == 0 .and. there) then
+        call h5_read_real_vector(file, '/restart/contact_active', nblock1(1, :), node_first, &
+            e, msg)
+        if (e /= 0 .and. ierr == 0) ierr = e
+        call mesh%node_io%from_block(nblock1, zlocal_nodes)
+        contact_active(1:nno) = zlocal_nodes(1, :)
+      end if
     end if
     ! Failure and erosion.
     if (allocated(state%zone_damage)) call read_zone('/zones/damage', state%zone_damage)

@@ -17,7 +17,7 @@ module io_output
   use hydro_state, only: state_t
   use hydro_kernels, only: DT_VOLUME
   use hydro_driver, only: hydro_energies
-  use contact_enforce, only: contact_t
+  use contact_enforce, only: contact_t, contact_active_flags
   use solver_control, only: control_t, FAIL_VOLUME, FAIL_NAN, FAIL_DT, STOP_FILE, STOP_WALL
   use solver_eta, only: eta_t
   use parallel_env, only: par_rank, par_size, par_sum_array, par_max, par_allgather
@@ -78,7 +78,8 @@ contains
       names = names//trim(config%blocks(b)%name)
     end do
     call dump_write(trim(path), config%title, trim(config%units), names, &
-        mesh, state, info, status, ct%node_gap, ct%work, ct%pairs(:)%work)
+        mesh, state, info, status, ct%node_gap, ct%work, ct%pairs(:)%work, &
+        contact_active_flags(ct, mesh%nnode))
     ok = status%ok()
     if (ok) then
       call dump_series_update(trim(config%output%directory)//'/'//trim(config%output%prefix), &
