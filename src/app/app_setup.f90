@@ -23,7 +23,8 @@ module app_setup
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
   use hydro_erosion, only: erosion_allocate
-  use contact_enforce, only: contact_t, contact_setup, side_context_t, contact_active_restore
+  use contact_enforce, only: contact_t, contact_setup, side_context_t, contact_active_restore, &
+      contact_resume_state, contact_resume
   use contact_monitor, only: contact_initial
   use contact_state, only: initial_offsets_t
   use io_deck, only: config_t
@@ -65,7 +66,7 @@ contains
     type(global_mesh_t) :: global
     type(initial_offsets_t), allocatable :: offsets(:)
     real(rk), allocatable :: coordinates(:, :)
-    real(rk), allocatable :: pair_work(:), active(:)
+    real(rk), allocatable :: pair_work(:), active(:), resume(:)
     type(side_context_t) :: sides
     logical :: exists
     if (len_trim(restart) > 0) then
@@ -103,8 +104,10 @@ contains
       ! The contact work (and each interface's) goes on from the dump's.
       pair_work = ct%pairs(:)%work
       allocate(active(mesh%nnode))
-      call dump_read(restart, mesh, state, status, ct%work, pair_work, active)
+      resume = contact_resume_state(ct)
+      call dump_read(restart, mesh, state, status, ct%work, pair_work, active, resume)
       call contact_active_restore(ct, active)
+      call contact_resume(ct, resume)
       ct%pairs(:)%work = pair_work
       call timers%stop('restart read')
     end if

@@ -57,7 +57,7 @@ module contact_enforce
   use contact_search, only: find_key
   use contact_state, only: RIGID_MASS_FACTOR, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, &
       SURFACE_LEN, contact_spec_t, surface_geometry_t, selection_t, contact_t, &
-      initial_offsets_t, step_sums_t, contact_method_t, method_slot_t
+      initial_offsets_t, step_sums_t, contact_method_t, method_slot_t, DIAG_AUDIT
   use contact_audit, only: surface_sagitta, audit_reach
   use contact_factory, only: contact_method_new
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
@@ -68,6 +68,7 @@ module contact_enforce
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
   public :: contact_report, contact_active_flags, contact_active_restore
+  public :: contact_resume_state, contact_resume
   ! The state the application and the deck reader see.
   public :: CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, contact_t
   public :: side_context_t
@@ -441,8 +442,12 @@ contains
     ct%speed = par_max(speed)
     call lap(ct%wait_seconds)
     rebuilt = cycle >= ct%next_search .or. .not. allocated(ct%all_of)
-    if (rebuilt) ct%audit_due = .true.
+    ! After a restart the first search only rebuilds what the dump does not
+    ! hold: the uninterrupted run's schedule (and so its audits) goes on.
+    if (rebuilt .and. cycle >= ct%resumed_search) ct%audit_due = .true.
     if (rebuilt) call contact_rebuild(ct, x_old, dt, cycle, sel)
+    if (rebuilt .and. cycle < ct%resumed_search) ct%next_search = ct%resumed_search
+    ct%resumed_search = -1
     call lap(ct%search_seconds)
     call gather_nodes(ct, x_old, v_old, force)
     call lap(ct%migrate_seconds)
@@ -709,5 +714,34 @@ contains
       end do
     end do
   end subroutine contact_active_restore
+
+  !> What a restart needs to go on with the uninterrupted run's search
+  !> schedule and history: the next search's cycle, then per deck interface
+  !> the last audit's columns (restart attributes, dump_write).
+  function contact_resume_state(ct) result(values)
+    type(contact_t), intent(in) :: ct
+    real(rk), allocatable :: values(:)
+    integer :: k
+    allocate(values(0))
+    if (ct%npair == 0) return
+    values = [real(ct%next_search, rk)]
+    do k = 1, ct%ndeck
+      values = [values, ct%pairs(k)%diag(DIAG_AUDIT:CONTACT_DIAG_COUNT)]
+    end do
+  end function contact_resume_state
+
+  !> contact_resume_state's values back (a dump without them: nothing).
+  subroutine contact_resume(ct, values)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: values(:)
+    integer :: k, n
+    if (ct%npair == 0 .or. size(values) == 0) return
+    n = CONTACT_DIAG_COUNT - DIAG_AUDIT + 1
+    if (size(values) /= 1 + n * ct%ndeck) return
+    ct%resumed_search = nint(values(1), i8)
+    do k = 1, ct%ndeck
+      ct%pairs(k)%diag(DIAG_AUDIT:CONTACT_DIAG_COUNT) = values(2 + n * (k - 1):1 + n * k)
+    end do
+  end subroutine contact_resume
 
 end module contact_enforce

@@ -223,6 +223,9 @@ module contact_state
     integer, allocatable :: send_count(:) !< (nranks) owned nodes sent to each part
     integer, allocatable :: send_own(:) !< owned index of each, by part
     integer(i8) :: next_search = 0 !< cycle of the next global search and RCB
+    !> a restart's schedule: the uninterrupted run's next search (the
+    !> restart's first stage searches anyway, without an audit before it)
+    integer(i8) :: resumed_search = -1
     real(rk) :: speed = 0.0_rk !< largest contact node speed at t^n (all ranks)
     !> The cycle's step over its stable step (< 1 when the step is cut short
     !> to land on a dump time or t_end): DLM's recovery speed is taken over

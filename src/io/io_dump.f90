@@ -38,7 +38,7 @@ contains
   !> units is the run's unit system (&control units): the root attribute
   !> units, and each field's units attribute from it.
   subroutine dump_write(path, title, units, block_names, mesh, state, info, status, &
-      contact_gap, contact_work, pair_work, contact_active)
+      contact_gap, contact_work, pair_work, contact_active, contact_resume)
     character(len=*), intent(in) :: path, title, units, block_names
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(in) :: state
@@ -51,6 +51,8 @@ contains
     !> (nnode local) per node the interfaces it carried force of in the last
     !> step, bit k - 1 for interface k (restart state of the contact)
     real(rk), intent(in), optional :: contact_active(:)
+    !> the contact's search schedule and last audit (contact_resume_state)
+    real(rk), intent(in), optional :: contact_resume(:)
     real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, z, k
@@ -210,6 +212,13 @@ contains
       call units_of('/restart/initial_position', 'length')
     end if
 
+    if (present(contact_resume)) then
+      do k = 1, size(contact_resume)
+        call h5_write_attr_real(file, '/restart', 'contact_resume_'//to_text(k), &
+            contact_resume(k), e, msg)
+        if (e /= 0 .and. ierr == 0) ierr = e
+      end do
+    end if
     if (present(contact_active)) then
       if (size(contact_active) > 0) then
         call mesh%node_io%to_block(reshape(contact_active(1:nno), [1, nno]), nblock1)
@@ -602,7 +611,8 @@ contains
 
   !> Read a dump into the state of a mesh built from the same deck: positions,
   !> velocities, masses, energies, restart state; ghosts refreshed by halos.
-  subroutine dump_read(path, mesh, state, status, contact_work, pair_work, contact_active)
+  subroutine dump_read(path, mesh, state, status, contact_work, pair_work, contact_active, &
+      contact_resume)
     character(len=*), intent(in) :: path
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
@@ -611,9 +621,12 @@ contains
     real(rk), intent(inout), optional :: pair_work(:) !< the same per contact interface
     !> (nnode local) dump_write's contact_active (zero where the dump has none)
     real(rk), intent(inout), optional :: contact_active(:)
+    !> dump_write's contact_resume, emptied when the dump has none
+    real(rk), allocatable, intent(inout), optional :: contact_resume(:)
     real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, version, icycle, ncomp, k
+    real(rk) :: resume_value
     integer(i8) :: node_first, zone_first, nglobal
     character(len=400) :: msg
     real(rk), allocatable :: nblock3(:, :), nblock1(:, :), zblock(:, :), zlocal(:, :)
@@ -719,6 +732,17 @@ contains
       call mesh%zone_io%from_block(zblock, zlocal(:, 1:nzo))
       call mesh%zone_halo%exchange(zlocal)
       state%zone_hourglass = reshape(zlocal, [3, 4, mesh%nzone])
+    end if
+    if (present(contact_resume)) then
+      do k = 1, size(contact_resume)
+        resume_value = -1.0_rk
+        call optional_attribute('contact_resume_'//to_text(k), resume_value)
+        if (resume_value < 0.0_rk .and. k == 1) then
+          contact_resume = [real(rk) ::]
+          exit
+        end if
+        contact_resume(k) = resume_value
+      end do
     end if
     if (present(contact_active)) then
       contact_active = 0.0_rk

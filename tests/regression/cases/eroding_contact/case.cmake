@@ -17,6 +17,8 @@ impact3d_regress(contact/eroding_distortion "regression;contact;solids"
 impact3d_regress(contact/eroding_emptied "regression;contact;solids"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/eroding_emptied
   --method emptied --mpiexec ${MPIEXEC_EXECUTABLE} --np 1)
-impact3d_check(restart/eroding_dlm "regression;parallel;contact;solids" restart
-  --workdir ${WORK}/restart_eroding_dlm --deck ${CMAKE_CURRENT_LIST_DIR}/pen_dlm.nml
-  --np 1 --restart-np 2 --from-cycle 30)
+foreach(m dlm dam)
+  impact3d_check(restart/eroding_${m} "regression;parallel;contact;solids" restart
+    --workdir ${WORK}/restart_eroding_${m} --deck ${CMAKE_CURRENT_LIST_DIR}/pen_${m}.nml
+    --np 1 --restart-np 2 --from-cycle 30)
+endforeach()
