@@ -209,19 +209,28 @@ contains
     class(block_part_t), intent(in) :: part
     integer(i8), intent(in) :: r
     real(rk) :: x(3)
-    integer :: b, n1, n2
+    integer :: b, i, j, k
+    call locate(part%node_offset, part%n + 1, r, b, i, j, k)
+    x = part%point(b, i, j, k)
+  end function raw_position
+
+  !> Block b and place (i, j, k), i fastest, of item id (1-based) of blocks
+  !> of dims(:, b) items each, offsets(b) items before block b.
+  pure subroutine locate(offsets, dims, id, b, i, j, k)
+    integer(i8), intent(in) :: offsets(:), id
+    integer, intent(in) :: dims(:, :) !< (3, nblock)
+    integer, intent(out) :: b, i, j, k
     integer(i8) :: l
     b = 1
-    do while (b < part%nblock)
-      if (part%node_offset(b + 1) >= r) exit
+    do while (b < size(offsets))
+      if (offsets(b + 1) >= id) exit
       b = b + 1
     end do
-    l = r - part%node_offset(b) - 1
-    n1 = part%n(1, b) + 1
-    n2 = part%n(2, b) + 1
-    x = part%point(b, int(mod(l, int(n1, i8))), int(mod(l / n1, int(n2, i8))), &
-        int(l / (int(n1, i8) * n2)))
-  end function raw_position
+    l = id - offsets(b) - 1
+    i = int(mod(l, int(dims(1, b), i8)))
+    j = int(mod(l / dims(1, b), int(dims(2, b), i8)))
+    k = int(l / (int(dims(1, b), i8) * dims(2, b)))
+  end subroutine locate
 
   !> Node id (1-based in the part) of raw point r, and the raw point whose
   !> position the node has.
@@ -271,16 +280,7 @@ contains
     class(block_part_t), intent(in) :: part
     integer(i8), intent(in) :: z
     integer, intent(out) :: b, i, j, k
-    integer(i8) :: l
-    b = 1
-    do while (b < part%nblock)
-      if (part%zone_offset(b + 1) >= z) exit
-      b = b + 1
-    end do
-    l = z - part%zone_offset(b) - 1
-    i = int(mod(l, int(part%n(1, b), i8)))
-    j = int(mod(l / part%n(1, b), int(part%n(2, b), i8)))
-    k = int(l / (int(part%n(1, b), i8) * part%n(2, b)))
+    call locate(part%zone_offset, part%n, z, b, i, j, k)
   end subroutine zone_of
 
   !> Faces of each of the part's sets.
