@@ -11,7 +11,6 @@ module app_run
   use hydro_state, only: state_t
   use hydro_boundary, only: boundary_t
   use hydro_driver, only: material_zones_t, hydro_zone_update
-  use hydro_erosion, only: erosion_restore
   use contact_enforce, only: contact_t, contact_report, side_context_t
   use contact_monitor, only: contact_audit_due
   use solver_step, only: solver_cycle, solver_audit, solver_contact_refresh
@@ -119,16 +118,6 @@ contains
       return
     end if
 
-    ! The positions at t = 0 (a restart has them from its dump): the dumps'
-    ! displacement, the initial volumes of the distortion erosion.
-    if (.not. allocated(state%node_position_initial)) &
-        state%node_position_initial = state%node_position
-    call erosion_restore(mesh, state, mz, config%erosion)
-    ! A restart after an erosion: the contact surfaces of the live zones.
-    if (allocated(state%zone_alive) .and. len_trim(restart) > 0) then
-      if (par_sum(count(state%zone_alive(1:mesh%nzone_owned) == 0.0_rk)) > 0) &
-          call solver_contact_refresh(mesh, state, bc, ct, setup_sides(config), timers)
-    end if
     call hydro_zone_update(mesh, state, config%materials, mz, config%hydro, bc, &
         state%node_position, state%node_velocity, bad)
     call control_reduce(mesh, state, config%hydro, bad, FAIL_NONE, ctl)

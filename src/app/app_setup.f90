@@ -22,8 +22,10 @@ module app_setup
       BC_SYMMETRY, BC_WALL
   use hydro_initial, only: initial_apply
   use hydro_driver, only: material_zones_t, material_zones_build
-  use hydro_erosion, only: erosion_allocate
+  use hydro_erosion, only: erosion_allocate, erosion_restore
+  use solver_step, only: solver_contact_refresh
   use contact_enforce, only: contact_t, contact_setup, side_context_t, contact_active_restore, &
+      contact_offset_restore, &
       contact_resume_state, contact_resume
   use contact_monitor, only: contact_initial
   use contact_state, only: initial_offsets_t
@@ -66,7 +68,7 @@ contains
     type(global_mesh_t) :: global
     type(initial_offsets_t), allocatable :: offsets(:)
     real(rk), allocatable :: coordinates(:, :)
-    real(rk), allocatable :: pair_work(:), active(:), resume(:)
+    real(rk), allocatable :: pair_work(:), active(:), resume(:), offset_values(:, :)
     type(side_context_t) :: sides
     logical :: exists
     if (len_trim(restart) > 0) then
@@ -105,11 +107,29 @@ contains
       pair_work = ct%pairs(:)%work
       allocate(active(mesh%nnode))
       resume = contact_resume_state(ct)
-      call dump_read(restart, mesh, state, status, ct%work, pair_work, active, resume)
-      call contact_active_restore(ct, active)
-      call contact_resume(ct, resume)
+      allocate(offset_values(ct%ndeck, mesh%nnode))
+      call dump_read(restart, mesh, state, status, ct%work, pair_work, active, resume, &
+          offset_values)
       ct%pairs(:)%work = pair_work
       call timers%stop('restart read')
+      if (.not. status%ok()) return
+    end if
+    ! The positions at t = 0 (a restart has them from its dump): the dumps'
+    ! displacement, the initial volumes of the distortion erosion.
+    if (.not. allocated(state%node_position_initial)) &
+        state%node_position_initial = state%node_position
+    call erosion_restore(mesh, state, mz, config%erosion)
+    if (len_trim(restart) > 0) then
+      ! A restart after an erosion: the contact surfaces of the live zones;
+      ! then the contact's restart state of the dump, offsets measured when
+      ! nodes joined included.
+      if (allocated(state%zone_alive)) then
+        if (par_sum(count(state%zone_alive(1:mesh%nzone_owned) == 0.0_rk)) > 0) &
+            call solver_contact_refresh(mesh, state, bc, ct, sides, timers)
+      end if
+      call contact_active_restore(ct, active)
+      call contact_offset_restore(ct, offset_values)
+      call contact_resume(ct, resume)
     end if
   end subroutine setup_run
 

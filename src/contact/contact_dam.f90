@@ -23,7 +23,7 @@ module contact_dam
   use contact_search, only: primary_pair_t
   use contact_state, only: FACING, AREA_TOLERANCE, PAIR_NODE_SEGMENT, SURFACE_LEN, &
       surface_geometry_t, interface_t, contact_t, contact_spec_t, contact_method_t, capture_of, &
-      geometry_update, recovery_allowance
+      geometry_update, recovery_allowance, recovery_excess, recovery_speed_of
   use contact_kernels, only: dam_merged_normal_velocity, dam_put_back_velocity, &
       dam_friction_velocity
   implicit none
@@ -225,9 +225,9 @@ contains
         end do
         ! Penetration beyond the initial offset the deck kept and the
         ! allowance (the slave's nodal area against the master segment's).
-        m_%excess(q) = max(-m_%primary(q)%gap - p%offset(ct%all_of(n)) - recovery_allowance( &
-            p%spec%penetration_tolerance, gs%nodal_area(n), sum(gm%area(:, &
-            m_%primary(q)%segment)), p%lsag_b(m_%primary(q)%segment)), 0.0_rk)
+        m_%excess(q) = recovery_excess(-m_%primary(q)%gap - p%offset(ct%all_of(n)), &
+            recovery_allowance(p%spec%penetration_tolerance, gs%nodal_area(n), &
+            sum(gm%area(:, m_%primary(q)%segment)), p%lsag_b(m_%primary(q)%segment)))
         if (m_%slave_normal) call use_slave_normal(p%a, gs, n, m_%primary(q)%normal)
         call rbf_weights(pos, ct%x(:, n), m_%primary(q)%normal, m_%rbf(:, q), ok)
         if (.not. ok) call bilinear_shape(m_%primary(q)%xi, m_%primary(q)%eta, m_%rbf(:, q))
@@ -343,7 +343,8 @@ contains
     m_%enforced = .false.
     do q = 1, size(m_%primary)
       n = m_%primary(q)%node
-      m_%recover(q) = DAM_RECOVERY * m_%excess(q) * ct%landing / step
+      m_%recover(q) = recovery_speed_of(DAM_RECOVERY, m_%excess(q), ct%landing, step, &
+          ct%speed)
       nrm = m_%primary(q)%normal
       call bilinear_shape(m_%primary(q)%xi, m_%primary(q)%eta, shape)
       am = 0.0_rk

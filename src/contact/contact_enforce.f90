@@ -68,7 +68,7 @@ module contact_enforce
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
   public :: contact_report, contact_active_flags, contact_active_restore
-  public :: contact_resume_state, contact_resume
+  public :: contact_resume_state, contact_resume, contact_offset_values, contact_offset_restore
   ! The state the application and the deck reader see.
   public :: CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, SURFACE_LEN, contact_spec_t, contact_t
   public :: side_context_t
@@ -166,7 +166,8 @@ contains
   !> the ghost zones, refreshed by the caller through the zone halo); sides
   !> given by face sets keep their faces. The contact index space, owned
   !> nodes, segment homes and RCB key nodes follow; each node keeps its
-  !> initial offset (a new node has none); sagittas and reach are taken at
+  !> offset (a node that joins has none; contact_refresh_offsets then
+  !> measures them); sagittas and reach are taken at
   !> x; a global search and RCB run at the next stage (contact_apply), and
   !> the audit after it. The work of each interface goes on. Collective.
   subroutine contact_surface_refresh(ct, mesh, x, node_mass, live, context, rigid)
@@ -206,6 +207,8 @@ contains
     call forget_index(ct)
     call index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, old_gid=old_gid, &
         old_offset=old_offset)
+    ! (the offsets then follow the new surfaces: contact_refresh_offsets)
+    ct%refreshed = .true.
     ! The next stage searches again on the new surfaces.
     ct%next_search = 0
     if (allocated(ct%all_of)) deallocate(ct%all_of)
@@ -366,7 +369,9 @@ contains
             p%offset(p%all_b%nodes(i)) = max(p%offset(p%all_b%nodes(i)), offsets(k)%b(i))
           end do
         end if
-        ! A refresh keeps each node's offset (by global id; a new node has none).
+        ! A refresh keeps each node's offset (by global id; a node that joins
+        ! has none); the caller then has them follow the new surfaces
+        ! (contact_refresh_offsets).
         if (present(old_gid) .and. p%mirror_of == 0) then
           do i = 1, ct%nall
             c = find_key(old_gid, ct%all_gid(i))
@@ -714,6 +719,51 @@ contains
       end do
     end do
   end subroutine contact_active_restore
+
+  !> Per deck interface and local node (ndeck, nnode) the offsets of the
+  !> owned contact nodes (zero elsewhere), once a refresh has measured some
+  !> (restart state: contact_refresh_offsets measured them at positions the
+  !> restart does not have); empty before, and without interfaces.
+  function contact_offset_values(ct, nnode) result(values)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: nnode
+    real(rk), allocatable :: values(:, :)
+    integer :: i, k
+    if (ct%npair == 0 .or. .not. ct%refreshed) then
+      allocate(values(0, 0))
+      return
+    end if
+    allocate(values(ct%ndeck, nnode))
+    values = 0.0_rk
+    do k = 1, ct%ndeck
+      do i = 1, ct%nown
+        values(k, ct%own_local(i)) = ct%pairs(k)%offset(ct%own_contact(i))
+      end do
+    end do
+  end function contact_offset_values
+
+  !> contact_offset_values' values back into the interfaces (after the
+  !> restart's refresh; the owners' values to every rank). Collective.
+  subroutine contact_offset_restore(ct, values)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: values(:, :) !< (ndeck, nnode local)
+    real(rk), allocatable :: all(:)
+    integer :: i, k
+    if (ct%npair == 0 .or. size(values, 1) /= ct%ndeck) return
+    allocate(all(ct%nall))
+    do k = 1, ct%ndeck
+      all = 0.0_rk
+      do i = 1, ct%nown
+        all(ct%own_contact(i)) = values(k, ct%own_local(i))
+      end do
+      ! (one owner each, zero elsewhere: the sums are the owners' values)
+      call par_sum_array(all)
+      ct%pairs(k)%offset = all
+    end do
+    do k = ct%ndeck + 1, ct%npair
+      if (ct%pairs(k)%mirror_of > 0) ct%pairs(k)%offset = ct%pairs(ct%pairs(k)%mirror_of)%offset
+    end do
+  end subroutine contact_offset_restore
 
   !> What a restart needs to go on with the uninterrupted run's search
   !> schedule and history: the next search's cycle, then per deck interface

@@ -33,6 +33,7 @@ module contact_monitor
   implicit none
   private
   public :: contact_initial, contact_audit_run, contact_step_end, contact_audit_due
+  public :: contact_depths, contact_refresh_offsets
 
   !> At most one audit warning per interface in this many cycles.
   integer, parameter :: WARN_EVERY = 100
@@ -310,6 +311,102 @@ contains
   !> owned ones are read): history columns, the per-node smallest gap for
   !> the dumps, a rate-limited warning, and ct%stop_run for on_penetration =
   !> 'stop'. Collective.
+  !> Every contact node's penetration of the other side of each deck
+  !> interface at x (the deeper of its depths on sides a and b, zero
+  !> outside), on every rank, with the nodes' global ids: what a refresh
+  !> compares before and after (contact_refresh_offsets). Collective.
+  subroutine contact_depths(ct, x, gid, depth)
+    type(contact_t), intent(in) :: ct
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local) positions now
+    integer(i8), allocatable, intent(out) :: gid(:) !< (nall) global ids
+    real(rk), allocatable, intent(out) :: depth(:, :) !< (nall, ndeck)
+    real(rk), allocatable :: xall(:, :), flat(:), zero_a(:), zero_b(:)
+    logical, allocatable :: sel_a(:), sel_b(:)
+    type(side_t) :: ra, rb
+    integer :: k, i, c
+
+    allocate(gid(ct%nall), depth(ct%nall, ct%ndeck))
+    gid = ct%all_gid
+    depth = 0.0_rk
+    if (ct%npair == 0) return
+    allocate(flat(3 * ct%nall))
+    flat = 0.0_rk
+    do i = 1, ct%nown
+      c = ct%own_contact(i)
+      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
+    end do
+    ! (one owner each, zero elsewhere: the sums are the owners' positions)
+    call par_sum_array(flat)
+    xall = reshape(flat, [3, ct%nall])
+    do k = 1, ct%ndeck
+      associate(p => ct%pairs(k))
+        allocate(sel_a(p%all_a%nnode), sel_b(p%all_b%nnode))
+        do i = 1, p%all_a%nnode
+          sel_a(i) = ct%own_of(p%all_a%nodes(i)) > 0
+        end do
+        do i = 1, p%all_b%nnode
+          sel_b(i) = ct%own_of(p%all_b%nodes(i)) > 0
+        end do
+        allocate(zero_a(p%all_a%nnode), zero_b(p%all_b%nnode))
+        zero_a = 0.0_rk
+        zero_b = 0.0_rk
+        call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
+            p%spec%penetration_tolerance, zero_a, sel_a, ct%planes, ra)
+        do i = 1, p%all_a%nnode
+          if (sel_a(i)) depth(p%all_a%nodes(i), k) = max(depth(p%all_a%nodes(i), k), ra%pen(i))
+        end do
+        if (.not. p%self) then
+          call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
+              p%spec%penetration_tolerance, zero_b, sel_b, ct%planes, rb)
+          do i = 1, p%all_b%nnode
+            if (sel_b(i)) depth(p%all_b%nodes(i), k) = max(depth(p%all_b%nodes(i), k), &
+                rb%pen(i))
+          end do
+        end if
+        ! (one owner each, zero elsewhere: the sums are the owners' values)
+        call par_sum_array(depth(:, k))
+        deallocate(sel_a, sel_b, zero_a, zero_b)
+      end associate
+    end do
+  end subroutine contact_depths
+
+  !> After a refresh, at the same positions x as contact_depths took gid and
+  !> depth before it: each node's offset follows the change of its depth
+  !> that the new surfaces made, offset + depth now - depth before (a node
+  !> that joined had none), and not less than zero. An erosion exposes
+  !> faces that can lie inside the other body already (the eroded zone was
+  !> between them), or takes away the face a node was held against; that
+  !> depth is not the contact's to remove. Pushed out by the recovery, over
+  !> a few steps, it would be put back at many times the impact's speed
+  !> and put energy into the run; the contact holds it where it is and
+  !> stops it going deeper, as the set-up keeps an initial overlap under
+  !> 'ignore'. The audit measures beyond these offsets. Collective.
+  subroutine contact_refresh_offsets(ct, x, gid, depth)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local) positions now
+    integer(i8), intent(in) :: gid(:) !< contact_depths before the refresh
+    real(rk), intent(in) :: depth(:, :) !< contact_depths before the refresh
+    integer(i8), allocatable :: gid_now(:)
+    real(rk), allocatable :: depth_now(:, :)
+    real(rk) :: before
+    integer :: k, i, c
+    if (ct%npair == 0) return
+    call contact_depths(ct, x, gid_now, depth_now)
+    do k = 1, ct%ndeck
+      associate(p => ct%pairs(k))
+        do i = 1, ct%nall
+          c = sorted_find(gid, gid_now(i))
+          before = 0.0_rk
+          if (c > 0) before = depth(c, k)
+          p%offset(i) = max(p%offset(i) + depth_now(i, k) - before, 0.0_rk)
+        end do
+      end associate
+    end do
+    do k = ct%ndeck + 1, ct%npair
+      if (ct%pairs(k)%mirror_of > 0) ct%pairs(k)%offset = ct%pairs(ct%pairs(k)%mirror_of)%offset
+    end do
+  end subroutine contact_refresh_offsets
+
   subroutine contact_audit_run(ct, x, cycle, time)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x(:, :)

@@ -38,7 +38,7 @@ contains
   !> units is the run's unit system (&control units): the root attribute
   !> units, and each field's units attribute from it.
   subroutine dump_write(path, title, units, block_names, mesh, state, info, status, &
-      contact_gap, contact_work, pair_work, contact_active, contact_resume)
+      contact_gap, contact_work, pair_work, contact_active, contact_resume, contact_offset)
     character(len=*), intent(in) :: path, title, units, block_names
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(in) :: state
@@ -53,6 +53,10 @@ contains
     real(rk), intent(in), optional :: contact_active(:)
     !> the contact's search schedule and last audit (contact_resume_state)
     real(rk), intent(in), optional :: contact_resume(:)
+    !> (ndeck, nnode local) the offsets of the contact nodes once a refresh
+    !> measured some (contact_offset_values; no rows: none to keep)
+    real(rk), intent(in), optional :: contact_offset(:, :)
+    real(rk), allocatable :: nblockk(:, :)
     real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, z, k
@@ -224,6 +228,15 @@ contains
         call mesh%node_io%to_block(reshape(contact_active(1:nno), [1, nno]), nblock1)
         call h5_write_real_vector(file, '/restart/contact_active', nblock1(1, :), &
             mesh%nnode_global, node_first, e, msg)
+        if (e /= 0 .and. ierr == 0) ierr = e
+      end if
+    end if
+    if (present(contact_offset)) then
+      if (size(contact_offset, 1) > 0) then
+        allocate(nblockk(size(contact_offset, 1), mesh%node_io%nblock))
+        call mesh%node_io%to_block(contact_offset(:, 1:nno), nblockk)
+        call h5_write_real_rows(file, '/restart/contact_offset', nblockk, mesh%nnode_global, &
+            node_first, e, msg)
         if (e /= 0 .and. ierr == 0) ierr = e
       end if
     end if
@@ -612,7 +625,7 @@ contains
   !> Read a dump into the state of a mesh built from the same deck: positions,
   !> velocities, masses, energies, restart state; ghosts refreshed by halos.
   subroutine dump_read(path, mesh, state, status, contact_work, pair_work, contact_active, &
-      contact_resume)
+      contact_resume, contact_offset)
     character(len=*), intent(in) :: path
     type(mesh_t), intent(inout) :: mesh
     type(state_t), intent(inout) :: state
@@ -623,6 +636,10 @@ contains
     real(rk), intent(inout), optional :: contact_active(:)
     !> dump_write's contact_resume, emptied when the dump has none
     real(rk), allocatable, intent(inout), optional :: contact_resume(:)
+    !> (ndeck, nnode local) dump_write's contact_offset, read when the dump
+    !> has it; otherwise no rows
+    real(rk), allocatable, intent(inout), optional :: contact_offset(:, :)
+    real(rk), allocatable :: nblockk(:, :), klocal(:, :)
     real(rk) :: work
     integer(hid_t) :: file
     integer :: ierr, e, nno, nzo, version, icycle, ncomp, k
@@ -754,6 +771,22 @@ contains
         if (e /= 0 .and. ierr == 0) ierr = e
         call mesh%node_io%from_block(nblock1, zlocal_nodes)
         contact_active(1:nno) = zlocal_nodes(1, :)
+      end if
+    end if
+    if (present(contact_offset)) then
+      call h5_path_exists(file, '/restart/contact_offset', there, e, msg)
+      if (e /= 0 .and. ierr == 0) ierr = e
+      if (e == 0 .and. there .and. size(contact_offset, 1) > 0) then
+        allocate(nblockk(size(contact_offset, 1), mesh%node_io%nblock))
+        allocate(klocal(size(contact_offset, 1), nno))
+        call h5_read_real_rows(file, '/restart/contact_offset', nblockk, node_first, e, msg)
+        if (e /= 0 .and. ierr == 0) ierr = e
+        call mesh%node_io%from_block(nblockk, klocal)
+        contact_offset = 0.0_rk
+        contact_offset(:, 1:nno) = klocal
+      else
+        deallocate(contact_offset)
+        allocate(contact_offset(0, 0))
       end if
     end if
     ! Failure and erosion.

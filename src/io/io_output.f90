@@ -17,7 +17,8 @@ module io_output
   use hydro_state, only: state_t
   use hydro_kernels, only: DT_VOLUME
   use hydro_driver, only: hydro_energies
-  use contact_enforce, only: contact_t, contact_active_flags, contact_resume_state
+  use contact_enforce, only: contact_t, contact_active_flags, contact_resume_state, &
+      contact_offset_values
   use solver_control, only: control_t, FAIL_VOLUME, FAIL_NAN, FAIL_DT, STOP_FILE, STOP_WALL
   use solver_eta, only: eta_t
   use parallel_env, only: par_rank, par_size, par_sum_array, par_max, par_allgather
@@ -79,7 +80,8 @@ contains
     end do
     call dump_write(trim(path), config%title, trim(config%units), names, &
         mesh, state, info, status, ct%node_gap, ct%work, ct%pairs(:)%work, &
-        contact_active_flags(ct, mesh%nnode), contact_resume_state(ct))
+        contact_active_flags(ct, mesh%nnode), contact_resume_state(ct), &
+        contact_offset_values(ct, mesh%nnode))
     ok = status%ok()
     if (ok) then
       call dump_series_update(trim(config%output%directory)//'/'//trim(config%output%prefix), &

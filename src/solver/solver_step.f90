@@ -2,7 +2,7 @@
 !> with the contact coupling and the strength update (docs/design.md, the
 !> cycle). Above hydro and contact, below io and app: no deck, no output.
 module solver_step
-  use core_kinds, only: rk
+  use core_kinds, only: rk, i8
   use core_exact_sum, only: exact_sum_t, exact_value
   use core_timer, only: wall_time, timers_t
   use mesh_local, only: mesh_t
@@ -15,7 +15,8 @@ module solver_step
   use hydro_erosion, only: erosion_step
   use contact_enforce, only: contact_t, contact_apply, contact_work_update, &
       contact_surface_refresh, side_context_t
-  use contact_monitor, only: contact_audit_run, contact_step_end, contact_audit_due
+  use contact_monitor, only: contact_audit_run, contact_step_end, contact_audit_due, &
+      contact_depths, contact_refresh_offsets
   use parallel_env, only: par_sum_exact
   use solver_schedule, only: schedule_t
   implicit none
@@ -90,10 +91,14 @@ contains
     type(contact_t), intent(inout) :: ct
     type(side_context_t), intent(in) :: sides
     type(timers_t), intent(inout) :: timers
+    integer(i8), allocatable :: gid(:)
+    real(rk), allocatable :: depth(:, :)
     if (ct%npair == 0) return
     call timers%start('contact')
+    call contact_depths(ct, state%node_position, gid, depth)
     call contact_surface_refresh(ct, mesh, state%node_position_initial, state%node_mass, &
         state%zone_alive > 0.0_rk, sides, boundary_prescribed(bc, size(state%node_mass)))
+    call contact_refresh_offsets(ct, state%node_position, gid, depth)
     call timers%stop('contact')
   end subroutine solver_contact_refresh
 

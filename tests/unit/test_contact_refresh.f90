@@ -8,6 +8,15 @@
 !>   the 4 x 4 x 3 zones left: 56 faces (12 + 12 on xmax and ymax, 16 + 16
 !>   on zmin and the new top), its highest node at z = 0.75, every contact
 !>   node owned by exactly one rank;
+!> * the offsets follow the surfaces (contact_depths before the refresh,
+!>   contact_refresh_offsets after): with block b's bottom face lowered to
+!>   z = 0.7, into block a's masked top layer, every node of a's new top
+!>   face (z = 0.75) takes its depth in b as its offset, the distance to
+!>   b's nearest face: min(0.05, 1 - x, 1 - y) (x = 0 and y = 0 are
+!>   symmetry planes, no faces); b's bottom nodes, 0.3 deep before and
+!>   0.05 now, keep none (a penetration that got smaller is the contact's
+!>   to remove); a mutation that gave every node its depth now, or none,
+!>   fails one of the two;
 !> * the next stages run a new global search on the new surfaces and the
 !>   contact forces stay finite.
 !> On 1 and 3 ranks. Usage: test_contact_refresh DECK.
@@ -25,6 +34,7 @@ program test_contact_refresh
   use hydro_driver, only: material_zones_t
   use io_probe, only: probes_t
   use contact_enforce, only: contact_t, contact_apply, contact_surface_refresh, side_context_t
+  use contact_monitor, only: contact_depths, contact_refresh_offsets
   use app_setup, only: setup_run
   use check, only: check_true, check_summary
   implicit none
@@ -40,7 +50,11 @@ program test_contact_refresh
   type(probes_t) :: probes
   type(timers_t) :: timers
   type(side_context_t) :: context
-  real(rk), allocatable :: flag(:), force(:, :)
+  real(rk), allocatable :: flag(:), force(:, :), xm(:, :), depth(:, :)
+  integer(i8), allocatable :: gid(:)
+  logical, allocatable :: in_b(:)
+  real(rk) :: expected, worst_a, worst_b
+  integer :: n, c
   logical, allocatable :: live(:)
   real(rk) :: ztop, zc
   integer :: ierr, z, i, stage, searches
@@ -90,7 +104,38 @@ program test_contact_refresh
   end do
   call mesh%zone_halo%halo_exchange_scalar(flag)
   live = flag > 0.5_rk
+  ! Block b's bottom face lowered to z = 0.7 (positions for the offsets).
+  allocate(in_b(mesh%nnode))
+  in_b = .false.
+  do z = 1, mesh%nzone
+    if (mesh%zone_block(z) == 2) in_b(mesh%zone_node(:, z)) = .true.
+  end do
+  xm = state%node_position
+  where (in_b .and. abs(xm(3, :) - 1.0_rk) < 1.0e-12_rk) xm(3, :) = 0.7_rk
+  call contact_depths(ct, xm, gid, depth)
   call contact_surface_refresh(ct, mesh, state%node_position, state%node_mass, live, context)
+  call contact_refresh_offsets(ct, xm, gid, depth)
+  worst_a = -1.0_rk
+  worst_b = -1.0_rk
+  do i = 1, ct%nown
+    n = ct%own_local(i)
+    c = ct%own_contact(i)
+    if (.not. in_b(n) .and. abs(xm(3, n) - 0.75_rk) < 1.0e-12_rk) then
+      expected = min(0.05_rk, 1.0_rk - xm(1, n), 1.0_rk - xm(2, n))
+      worst_a = max(worst_a, abs(ct%pairs(1)%offset(c) - expected))
+    else if (in_b(n) .and. abs(xm(3, n) - 0.7_rk) < 1.0e-12_rk) then
+      worst_b = max(worst_b, abs(ct%pairs(1)%offset(c)))
+    end if
+  end do
+  worst_a = par_max(worst_a)
+  worst_b = par_max(worst_b)
+  if (par_rank() == 0) write(output_unit, '(a,es10.3,a,es10.3)') &
+      'offsets: a''s new top, largest error ', worst_a, '; b''s bottom, largest ', worst_b
+  ! (depths of a plane box geometry: exact but for the rounding of 0.75 - 0.7)
+  call check_true('a node that joined takes its depth as offset (to 1e-12)', &
+      worst_a >= 0.0_rk .and. worst_a < 1.0e-12_rk)
+  call check_true('a node less deep than before keeps no offset', &
+      worst_b >= 0.0_rk .and. worst_b < 1.0e-12_rk)
   call check_true('surface a: 56 faces of the 4 x 4 x 3 zones left', ct%pairs(1)%all_a%nseg == 56)
   call check_true('surface b unchanged (125 zones: 25 + 25 + 25 + 25 faces)', &
       ct%pairs(1)%all_b%nseg == before%pairs(1)%all_b%nseg)
