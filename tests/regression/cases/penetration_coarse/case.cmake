@@ -1,0 +1,17 @@
+# The penetration problem's coarse deck (problems/penetration/
+# penetration_coarse.nml, 1147 m/s, erosion and eroding DLM contact):
+# * parallel/bitwise_penetration: its first 6 us (zones eroded in several
+#   cycles by then) on 1, 2, 3 and 4 ranks, every dump and the exact history
+#   columns bitwise;
+# * long/penetration_coarse_20us: 20 us on 2 ranks, energy balance to 1e-10
+#   and no kinetic energy beyond the initial total (check.py).
+impact3d_check(parallel/bitwise_penetration "regression;parallel;contact;solids" bitwise
+  --workdir ${WORK}/bitwise_penetration --deck ${PROBLEMS}/penetration/penetration_coarse.nml
+  --replace "t_end = 1.0e-3" "t_end = 6.0e-6"
+  --replace "file = 'penetration_coarse.msh'"
+            "file = '${PROBLEMS}/penetration/penetration_coarse.msh'"
+  --replace "dump_interval = 10.0e-6" "dump_interval = 2.0e-6"
+  --ranks 1 2 3 4 --history --history-except _force _pen_rms _dmom_x _dmom_y _dmom_z)
+impact3d_regress(long/penetration_coarse_20us "regression;contact;solids;long"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/penetration_coarse_20us
+  --t-end 20.0e-6 --mpiexec ${MPIEXEC_EXECUTABLE} --np 2)
