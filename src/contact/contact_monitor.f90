@@ -311,6 +311,36 @@ contains
   !> owned ones are read): history columns, the per-node smallest gap for
   !> the dumps, a rate-limited warning, and ct%stop_run for on_penetration =
   !> 'stop'. Collective.
+  !> Every contact node's position, on every rank: the owners' positions
+  !> summed (one owner each, zero elsewhere: exact). Collective.
+  function positions_everywhere(ct, x) result(xall)
+    type(contact_t), intent(in) :: ct
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local)
+    real(rk), allocatable :: xall(:, :)
+    real(rk), allocatable :: flat(:)
+    integer :: i, c
+    allocate(flat(3 * ct%nall))
+    flat = 0.0_rk
+    do i = 1, ct%nown
+      c = ct%own_contact(i)
+      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
+    end do
+    call par_sum_array(flat)
+    xall = reshape(flat, [3, ct%nall])
+  end function positions_everywhere
+
+  !> Per node of a global surface, whether this rank owns it.
+  function owned_nodes(ct, surf) result(owned)
+    type(contact_t), intent(in) :: ct
+    type(contact_surface_t), intent(in) :: surf
+    logical, allocatable :: owned(:)
+    integer :: i
+    allocate(owned(surf%nnode))
+    do i = 1, surf%nnode
+      owned(i) = ct%own_of(surf%nodes(i)) > 0
+    end do
+  end function owned_nodes
+
   !> Every contact node's penetration of the other side of each deck
   !> interface at x (the deeper of its depths on sides a and b, zero
   !> outside), on every rank, with the nodes' global ids: what a refresh
@@ -320,33 +350,20 @@ contains
     real(rk), intent(in) :: x(:, :) !< (3, nnode local) positions now
     integer(i8), allocatable, intent(out) :: gid(:) !< (nall) global ids
     real(rk), allocatable, intent(out) :: depth(:, :) !< (nall, ndeck)
-    real(rk), allocatable :: xall(:, :), flat(:), zero_a(:), zero_b(:)
+    real(rk), allocatable :: xall(:, :), zero_a(:), zero_b(:)
     logical, allocatable :: sel_a(:), sel_b(:)
     type(side_t) :: ra, rb
-    integer :: k, i, c
+    integer :: k, i
 
     allocate(gid(ct%nall), depth(ct%nall, ct%ndeck))
     gid = ct%all_gid
     depth = 0.0_rk
     if (ct%npair == 0) return
-    allocate(flat(3 * ct%nall))
-    flat = 0.0_rk
-    do i = 1, ct%nown
-      c = ct%own_contact(i)
-      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
-    end do
-    ! (one owner each, zero elsewhere: the sums are the owners' positions)
-    call par_sum_array(flat)
-    xall = reshape(flat, [3, ct%nall])
+    xall = positions_everywhere(ct, x)
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
-        allocate(sel_a(p%all_a%nnode), sel_b(p%all_b%nnode))
-        do i = 1, p%all_a%nnode
-          sel_a(i) = ct%own_of(p%all_a%nodes(i)) > 0
-        end do
-        do i = 1, p%all_b%nnode
-          sel_b(i) = ct%own_of(p%all_b%nodes(i)) > 0
-        end do
+        sel_a = owned_nodes(ct, p%all_a)
+        sel_b = owned_nodes(ct, p%all_b)
         allocate(zero_a(p%all_a%nnode), zero_b(p%all_b%nnode))
         zero_a = 0.0_rk
         zero_b = 0.0_rk
@@ -412,7 +429,7 @@ contains
     real(rk), intent(in) :: x(:, :)
     integer(i8), intent(in) :: cycle
     real(rk), intent(in) :: time
-    real(rk), allocatable :: xall(:, :), flat(:), rec(:), all(:, :)
+    real(rk), allocatable :: xall(:, :), rec(:), all(:, :)
     type(side_t) :: ra, rb
     logical, allocatable :: sel_a(:), sel_b(:)
     real(rk) :: sums(4), worst(2), deep
@@ -420,27 +437,14 @@ contains
     character(len=600) :: text
 
     if (ct%npair == 0) return
-    ! Every contact node's position on every rank (one owner each: exact).
-    allocate(flat(3 * ct%nall))
-    flat = 0.0_rk
-    do i = 1, ct%nown
-      c = ct%own_contact(i)
-      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
-    end do
-    call par_sum_array(flat)
-    xall = reshape(flat, [3, ct%nall])
+    xall = positions_everywhere(ct, x)
     ct%gap_own = huge(1.0_rk)
     allocate(rec(6), all(6, par_size()))
     ! The deck's interfaces (a reverse pass audits nothing of its own).
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
-        allocate(sel_a(p%all_a%nnode), sel_b(p%all_b%nnode))
-        do i = 1, p%all_a%nnode
-          sel_a(i) = ct%own_of(p%all_a%nodes(i)) > 0
-        end do
-        do i = 1, p%all_b%nnode
-          sel_b(i) = ct%own_of(p%all_b%nodes(i)) > 0
-        end do
+        sel_a = owned_nodes(ct, p%all_a)
+        sel_b = owned_nodes(ct, p%all_b)
         call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
             p%spec%penetration_tolerance, p%offset(p%all_a%nodes), sel_a, ct%planes, ra)
         if (.not. p%self) call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
