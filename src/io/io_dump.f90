@@ -793,6 +793,9 @@ contains
     if (allocated(state%zone_damage)) call read_zone('/zones/damage', state%zone_damage)
     if (allocated(state%zone_alive)) then
       call read_zone('/zones/alive', state%zone_alive)
+      ! An eroded zone may have turned inside out: it keeps its last density,
+      ! which only the dump has (a live zone's comes from its mass and volume).
+      call read_zone('/zones/density', state%zone_density)
       call h5_read_attr_real(file, '/restart', 'dt_reference', state%dt_reference, e, msg)
       if (e /= 0 .and. ierr == 0) ierr = e
       call h5_read_real_vector(file, '/restart/eroded_kinetic', nblock1(1, :), node_first, &
