@@ -9,6 +9,7 @@ module app_setup
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
+  use mesh_exodus, only: exodus_part_t, exodus_scan, range_add_exodus
   use mesh_curved, only: curved_part
   use mesh_blocks, only: block_part_t, part_assemble, range_add_part, part_set_counts
   use mesh_local, only: mesh_t
@@ -42,6 +43,11 @@ module app_setup
   type :: block_part_holder_t
     class(block_part_t), allocatable :: part
   end type block_part_holder_t
+
+  !> The &block of each volume group of an imported part.
+  type :: group_map_t
+    integer, allocatable :: block(:)
+  end type group_map_t
 
 contains
 
@@ -175,23 +181,39 @@ contains
     logical, intent(inout) :: claimed(:) !< per &block
     type(status_t), intent(inout) :: status
     integer, allocatable :: map(:)
-    integer :: g, b, z
+    integer :: g, z
+    call group_block_map(config, where, kind, path, group_names, [(any(global%zone_block == g), &
+        g = 1, size(group_names))], claimed, map, status)
+    if (.not. status%ok()) return
+    do z = 1, global%nzone
+      global%zone_block(z) = map(global%zone_block(z))
+    end do
+  end subroutine assign_blocks_by_name
+
+  !> map(g): the &block named after volume group g of an imported part (0 =
+  !> none: a problem if the group holds zones); the blocks of groups with
+  !> zones are claimed by this part.
+  subroutine group_block_map(config, where, kind, path, group_names, used, claimed, map, status)
+    type(config_t), intent(in) :: config
+    character(len=*), intent(in) :: where, kind, path
+    character(len=*), intent(in) :: group_names(:)
+    logical, intent(in) :: used(:) !< group g holds zones
+    logical, intent(inout) :: claimed(:) !< per &block
+    integer, allocatable, intent(out) :: map(:)
+    type(status_t), intent(inout) :: status
+    integer :: g, b
     allocate(map(size(group_names)))
     map = 0
     do g = 1, size(group_names)
       do b = 1, size(config%blocks)
         if (config%blocks(b)%name == group_names(g)) map(g) = b
       end do
-      if (map(g) == 0 .and. any(global%zone_block == g)) call status%add(trim(where)// &
+      if (map(g) == 0 .and. used(g)) call status%add(trim(where)// &
           ': file: the '//kind//' '''//trim(group_names(g))//''' of mesh file '''//path// &
           ''' has no &block of that name'//name_hint(group_names(g), config%blocks%name))
-      if (map(g) > 0 .and. any(global%zone_block == g)) claimed(map(g)) = .true.
+      if (map(g) > 0 .and. used(g)) claimed(map(g)) = .true.
     end do
-    if (.not. status%ok()) return
-    do z = 1, global%nzone
-      global%zone_block(z) = map(global%zone_block(z))
-    end do
-  end subroutine assign_blocks_by_name
+  end subroutine group_block_map
 
   !> Build this rank's mesh: every &mesh part in deck order, each rank
   !> generating only its contiguous range of the global zone ids (box and
@@ -215,6 +237,8 @@ contains
     character(len=NAME_LEN), allocatable :: group_names(:)
     type(global_mesh_t), allocatable :: pieces(:)
     type(block_part_holder_t), allocatable :: curved(:)
+    type(exodus_part_t), allocatable :: exodus(:)
+    type(group_map_t), allocatable :: maps(:)
     type(mesh_range_t) :: range
     type(distribute_stats_t) :: stats
     integer :: k, n, b, nx, ny, nz, lo, hi, z, m
@@ -237,6 +261,7 @@ contains
     ! Imported parts are read whole (with their blocks, rotation and offset);
     ! boxes and curved parts only counted (built whole too for tests, whole).
     allocate(pieces(size(config%parts)), curved(size(config%parts)))
+    allocate(exodus(size(config%parts)), maps(size(config%parts)))
     nzone = 0
     nnode = 0
     part_block = 0
@@ -343,6 +368,19 @@ contains
           if (hi >= lo) range%zone_block(lo:hi) = part_block(k)
           zone0 = zone0 + int(nx, i8) * ny * nz
           node0 = node0 + int(nx + 1, i8) * (ny + 1) * (nz + 1)
+        else if (allocated(exodus(k)%path)) then
+          ! An Exodus II file read by ranges on every rank.
+          counts = exodus(k)%set_size
+          allocate(sets(2, exodus(k)%nset), ord0(2, exodus(k)%nset))
+          call map_sets(exodus(k)%set_names)
+          call range_add_exodus(range, exodus(k), zone0, node0, sets, ord0, lo, hi, &
+              trim(where)//': '//trim(spec%mesh_type)//' mesh file '''//spec%mesh_path// &
+              ''' read:', lines, status)
+          if (par_rank() == 0) write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
+          if (hi >= lo) range%zone_block(lo:hi) = int(maps(k)%block(range%zone_block(lo:hi)), ik)
+          call place(lo, hi)
+          zone0 = zone0 + exodus(k)%nelem
+          node0 = node0 + exodus(k)%nnode
         else
           allocate(counts(piece%nset))
           counts = int(piece%set_start(2:) - piece%set_start(:piece%nset), i8)
@@ -400,6 +438,31 @@ contains
       reader = need_global .or. par_rank() == 0
       count0 = status%count
       associate(spec => config%parts(k), piece => pieces(k))
+        if (spec%mesh_type == 'exodus' .and. .not. need_global) then
+          ! Every rank reads its ranges (exodus_scan now, range_add_exodus later).
+          call exodus_scan(spec%mesh_path, exodus(k), status)
+          if (status%count > count0) return
+          associate(x => exodus(k))
+            if (part_block(k) > 0) then
+              allocate(maps(k)%block(x%nblock))
+              maps(k)%block = part_block(k)
+            else
+              call group_block_map(config, where, mesh_import_group_kind(spec%mesh_type), &
+                  spec%mesh_path, x%block_names, x%block_start(2:) > x%block_start(:x%nblock), &
+                  claimed, maps(k)%block, status)
+              imported = imported//'; '//mesh_import_group_kind(spec%mesh_type)//'s of '''// &
+                  spec%mesh_path//''':'
+              do n = 1, x%nblock
+                if (x%block_start(n + 1) > x%block_start(n)) imported = imported//' '// &
+                    trim(x%block_names(n))
+              end do
+            end if
+            piece%nzone = x%nelem
+            piece%nnode = int(x%nnode)
+            piece%nset = x%nset
+          end associate
+          return
+        end if
         if (reader) then
           call mesh_import_file(spec%mesh_type, spec%mesh_path, piece, group_names, status)
           if (status%count == count0) then
