@@ -6,6 +6,7 @@ module app_setup
   use core_status, only: status_t
   use core_timer, only: timers_t
   use core_names, only: name_hint
+  use core_memory, only: peak_memory_mb
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
@@ -33,7 +34,7 @@ module app_setup
   use io_probe, only: probes_t, probe_setup
   use app_provenance, only: restart_deck_check
   use material_table, only: STRENGTH_NONE
-  use parallel_env, only: par_size, par_rank, par_bcast, par_sum, par_max
+  use parallel_env, only: par_size, par_rank, par_bcast, par_sum, par_max, par_allgather
   use parallel_route, only: par_max_i8
   implicit none
   private
@@ -401,6 +402,7 @@ contains
       end associate
     end do
     call timers%stop('mesh generate')
+    call read_memory_report()
     call assign_blocks(config, range, status, claimed)
     if (need_global) then
       do z = 1, global%nzone
@@ -565,6 +567,20 @@ contains
     end subroutine map_sets
 
   end subroutine setup_mesh
+
+  !> One line on the peak memory of the ranks once the mesh is generated or
+  !> read (each rank holding its range of the zones, before partitioning):
+  !> what reading a mesh file costs the ranks, rank 0 included.
+  subroutine read_memory_report()
+    real(rk) :: mine(1)
+    real(rk), allocatable :: all(:, :)
+    mine(1) = peak_memory_mb()
+    allocate(all(1, par_size()))
+    call par_allgather(mine, all)
+    if (par_rank() == 0) write(output_unit, '(a,f0.1,a,f0.1,a,i0,a)') &
+        'mesh read: peak memory per rank (VmHWM) so far: rank 0 ', all(1, 1), ' MB, largest ', &
+        maxval(all(1, :)), ' MB (rank ', maxloc(all(1, :), dim=1) - 1, ')'
+  end subroutine read_memory_report
 
   !> One line on the partition: parts, faces cut, the largest rank's zones
   !> over the mean, ghost nodes and set-up bytes sent (largest rank).
