@@ -11,6 +11,7 @@ module app_setup
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
   use mesh_exodus, only: exodus_part_t, exodus_scan, range_add_exodus
+  use mesh_gmsh, only: gmsh_part_t, gmsh_scan, range_add_gmsh
   use mesh_curved, only: curved_part
   use mesh_blocks, only: block_part_t, part_assemble, range_add_part, part_set_counts
   use mesh_local, only: mesh_t
@@ -239,6 +240,7 @@ contains
     type(global_mesh_t), allocatable :: pieces(:)
     type(block_part_holder_t), allocatable :: curved(:)
     type(exodus_part_t), allocatable :: exodus(:)
+    type(gmsh_part_t), allocatable :: gmsh(:)
     type(group_map_t), allocatable :: maps(:)
     type(mesh_range_t) :: range
     type(distribute_stats_t) :: stats
@@ -262,7 +264,7 @@ contains
     ! Imported parts are read whole (with their blocks, rotation and offset);
     ! boxes and curved parts only counted (built whole too for tests, whole).
     allocate(pieces(size(config%parts)), curved(size(config%parts)))
-    allocate(exodus(size(config%parts)), maps(size(config%parts)))
+    allocate(exodus(size(config%parts)), maps(size(config%parts)), gmsh(size(config%parts)))
     nzone = 0
     nnode = 0
     part_block = 0
@@ -347,6 +349,8 @@ contains
     do k = 1, size(config%parts)
       associate(spec => config%parts(k), piece => pieces(k))
         is_box = spec%mesh_type == 'box'
+        where = '&mesh'
+        if (size(config%parts) > 1) write(where, '(a,i0,a)') '&mesh(', k, ')'
         if (allocated(curved(k)%part)) then
           counts = part_set_counts(curved(k)%part)
           allocate(sets(2, size(counts)), ord0(2, size(counts)))
@@ -382,6 +386,28 @@ contains
           call place(lo, hi)
           zone0 = zone0 + exodus(k)%nelem
           node0 = node0 + exodus(k)%nnode
+        else if (allocated(gmsh(k)%path)) then
+          ! A Gmsh file streamed by rank 0 in chunks; the sets' sizes come
+          ! with the faces.
+          allocate(counts(size(gmsh(k)%set_names)))
+          counts = 0
+          allocate(sets(2, size(counts)), ord0(2, size(counts)))
+          call map_sets(gmsh(k)%set_names)
+          call range_add_gmsh(range, gmsh(k), zone0, node0, sets, ord0, lo, hi, &
+              trim(where)//': '//trim(spec%mesh_type)//' mesh file '''//spec%mesh_path// &
+              ''' read:', lines, status)
+          do n = 1, size(counts)
+            do m = 1, 2
+              if (sets(m, n) > 0) range%set_count(sets(m, n)) = range%set_count(sets(m, n)) + &
+                  gmsh(k)%set_count(n)
+            end do
+          end do
+          if (par_rank() == 0) write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
+          if (hi >= lo .and. status%ok()) range%zone_block(lo:hi) = &
+              int(maps(k)%block(range%zone_block(lo:hi)), ik)
+          call place(lo, hi)
+          zone0 = zone0 + gmsh(k)%nhex
+          node0 = node0 + gmsh(k)%nnode
         else
           allocate(counts(piece%nset))
           counts = int(piece%set_start(2:) - piece%set_start(:piece%nset), i8)
@@ -462,6 +488,29 @@ contains
             piece%nzone = x%nelem
             piece%nnode = int(x%nnode)
             piece%nset = x%nset
+          end associate
+          return
+        end if
+        if (spec%mesh_type == 'gmsh' .and. .not. need_global) then
+          ! Rank 0 streams the file in chunks (gmsh_scan now, range_add_gmsh later).
+          call gmsh_scan(spec%mesh_path, gmsh(k), status)
+          if (status%count > count0) return
+          associate(x => gmsh(k))
+            if (part_block(k) > 0) then
+              allocate(maps(k)%block(size(x%block_tags)))
+              maps(k)%block = part_block(k)
+            else
+              call group_block_map(config, where, mesh_import_group_kind(spec%mesh_type), &
+                  spec%mesh_path, x%block_names, x%block_used, claimed, maps(k)%block, status)
+              imported = imported//'; '//mesh_import_group_kind(spec%mesh_type)//'s of '''// &
+                  spec%mesh_path//''':'
+              do n = 1, size(x%block_tags)
+                if (x%block_used(n)) imported = imported//' '//trim(x%block_names(n))
+              end do
+            end if
+            piece%nzone = int(x%nhex)
+            piece%nnode = int(x%nnode)
+            piece%nset = size(x%set_tags)
           end associate
           return
         end if

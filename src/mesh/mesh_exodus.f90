@@ -21,6 +21,7 @@ module mesh_exodus
   use mesh_geometry, only: hex_volume, quad_vector_area, HEX_FACE_NODES
   use mesh_global, only: global_mesh_t, NAME_LEN
   use mesh_range, only: mesh_range_t, range_grow_faces
+  use mesh_report, only: merge_capped, MAX_REPORT, LINE_LEN
   use parallel_env, only: par_rank, par_size, par_sum, par_max
   use parallel_route, only: par_block_range, par_block_owner, par_route, par_route_free, &
       par_exscan_i8, par_allgather_text, par_route_rounds, par_ordered_sum
@@ -32,12 +33,9 @@ module mesh_exodus
   !> 1-2, 2-3, 3-4, 4-1 of the bottom, 5 the bottom 1-4-3-2, 6 the top 5-6-7-8).
   integer, parameter, public :: EXODUS_SIDE_FACE(6) = [3, 4, 5, 6, 1, 2]
   integer, parameter :: KIND_BLOCK = 1, KIND_SIDE_SET = 3
-  integer, parameter :: MAX_REPORT = 10
   integer, parameter :: TEXT_LEN = 257
   !> Items per read and per all-to-all when every rank reads its ranges.
   integer, parameter :: CHUNK = 65536
-  !> Length of a message merged over the ranks (core_status keeps 400).
-  integer, parameter :: LINE_LEN = 400
 
   !> An Exodus II file read by ranges on every rank (exodus_scan, then
   !> range_add_exodus): its sizes and names, the same on every rank, and
@@ -890,22 +888,5 @@ contains
     call move_alloc(v2, value)
   end subroutine grow_sums
 
-  !> Problems of one kind found by every rank in its range (rank order is file
-  !> order): the first MAX_REPORT over all ranks, then the count of the rest,
-  !> the same on every rank. lines(:min(n, MAX_REPORT)) are this rank's.
-  subroutine merge_capped(status, prefix, lines, n, what)
-    type(status_t), intent(inout) :: status
-    character(len=*), intent(in) :: prefix, what
-    character(len=LINE_LEN), intent(in) :: lines(:)
-    integer, intent(in) :: n
-    character(len=LINE_LEN), allocatable :: all(:)
-    integer :: i, total
-    call par_allgather_text(lines(:min(n, MAX_REPORT)), all)
-    total = par_sum(n)
-    do i = 1, min(size(all), MAX_REPORT)
-      call status%add(trim(all(i)))
-    end do
-    call status%add_more(prefix, total, MAX_REPORT, what)
-  end subroutine merge_capped
 
 end module mesh_exodus
