@@ -244,7 +244,7 @@ contains
     type(group_map_t), allocatable :: maps(:)
     type(mesh_range_t) :: range
     type(distribute_stats_t) :: stats
-    integer :: k, n, b, nx, ny, nz, lo, hi, z, m
+    integer :: k, n, b, nx, ny, nz, lo, hi, z, m, count_before
     integer(i8) :: nzone, nnode, zone0, node0
     integer, allocatable :: sets(:, :)
     integer(i8), allocatable :: ord0(:, :), counts(:)
@@ -378,10 +378,12 @@ contains
           counts = exodus(k)%set_size
           allocate(sets(2, exodus(k)%nset), ord0(2, exodus(k)%nset))
           call map_sets(exodus(k)%set_names)
+          count_before = status%count
           call range_add_exodus(range, exodus(k), zone0, node0, sets, ord0, lo, hi, &
               trim(where)//': '//trim(spec%mesh_type)//' mesh file '''//spec%mesh_path// &
               ''' read:', lines, status)
-          if (par_rank() == 0) write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
+          if (par_rank() == 0 .and. status%count == count_before) write(output_unit, '(a)') &
+              (trim(lines(n)), n = 1, size(lines))
           if (hi >= lo) range%zone_block(lo:hi) = int(maps(k)%block(range%zone_block(lo:hi)), ik)
           call place(lo, hi)
           zone0 = zone0 + exodus(k)%nelem
@@ -393,6 +395,7 @@ contains
           counts = 0
           allocate(sets(2, size(counts)), ord0(2, size(counts)))
           call map_sets(gmsh(k)%set_names)
+          count_before = status%count
           call range_add_gmsh(range, gmsh(k), zone0, node0, sets, ord0, lo, hi, &
               trim(where)//': '//trim(spec%mesh_type)//' mesh file '''//spec%mesh_path// &
               ''' read:', lines, status)
@@ -402,7 +405,8 @@ contains
                   gmsh(k)%set_count(n)
             end do
           end do
-          if (par_rank() == 0) write(output_unit, '(a)') (trim(lines(n)), n = 1, size(lines))
+          if (par_rank() == 0 .and. status%count == count_before) write(output_unit, '(a)') &
+              (trim(lines(n)), n = 1, size(lines))
           if (hi >= lo .and. status%ok()) range%zone_block(lo:hi) = &
               int(maps(k)%block(range%zone_block(lo:hi)), ik)
           call place(lo, hi)
