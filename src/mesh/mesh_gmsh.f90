@@ -1603,8 +1603,7 @@ contains
     type(gmsh_data_t), intent(inout) :: data
     if (data%nbuf == 0) return
     call send_command(data%buf_cmd, int(data%nbuf, i8), 0_i8)
-    call deliver(data%buf_cmd, data%part, data%range, data%buf(:, :data%nbuf), &
-        data%buf_dest(:data%nbuf))
+    call deliver(data%buf_cmd, data%part, data%range, data%buf, data%buf_dest(:data%nbuf))
     data%nbuf = 0
   end subroutine flush
 
@@ -1613,13 +1612,12 @@ contains
     integer, intent(in) :: cmd
     type(gmsh_part_t), intent(inout) :: part
     type(mesh_range_t), intent(inout) :: range
-    integer(i8), intent(in) :: send(:, :)
+    !> (width, >= size(dest)) the chunk (its first size(dest) records); freed
+    integer(i8), allocatable, intent(inout) :: send(:, :)
     integer, intent(in) :: dest(:)
-    integer(i8), allocatable :: s(:, :), recv(:, :), grown(:, :)
+    integer(i8), allocatable :: recv(:, :), grown(:, :)
     integer :: i, m, p, local
-    allocate(s(size(send, 1), size(send, 2)))
-    s = send
-    call par_route_free(s, dest, recv)
+    call par_route_free(send, dest, recv)
     m = size(recv, 2)
     select case (cmd)
     case (CMD_NODES)
@@ -1705,7 +1703,6 @@ contains
       case default
         allocate(empty(WIDTH(int(c(1))), 0))
         call deliver(int(c(1)), part, range, empty, none)
-        deallocate(empty)
       end select
     end do
   end subroutine stream_serve
@@ -1967,12 +1964,13 @@ contains
     character(len=LINE_LEN) :: lines(MAX_REPORT)
     character(len=24) :: text
     integer(i8), allocatable :: ids(:), send(:, :), recv(:, :), answer(:, :), key(:), ans(:, :)
-    integer(i8), allocatable :: faces(:, :), entries(:, :), cnt(:), off(:)
+    integer(i8), allocatable :: faces(:, :), entries(:, :), cnt(:), off(:), quads(:, :), &
+        best2(:, :)
     integer, allocatable :: dest(:), source(:), order(:)
     real(rk), allocatable :: value(:, :), vol(:), volume(:)
     real(rk) :: total(4), p(3, 4), a
     integer(i8) :: zfirst, zlast, g, fk(2), kk(4)
-    integer :: nz, i, j, k, c, f, n, nbad, s, m, pos, nset, best, cand, nid(4)
+    integer :: nz, i, j, k, c, f, n, nbad, s, m, pos, nset, cand, nid(4)
     logical :: opened, unknown
 
     prefix = "mesh file '"//trim(part%path)//"': "
@@ -2091,27 +2089,9 @@ contains
     end do
     call merge_capped(status, prefix, lines, nbad, 'hexahedra with volume <= 0')
 
-    ! Faces of the hexahedra, [key (2), 6 (zone - 1) + face, the four ids
-    ! packed in two], to the owner of their smallest node's block of ids.
-    allocate(faces(5, 6 * nz), dest(6 * nz))
-    do i = 1, nz
-      do f = 1, 6
-        nid = int(range%conn(HEX_FACE_NODES(:, f), lo + i - 1) - node0)
-        j = 6 * (i - 1) + f
-        faces(1:2, j) = sorted_key(nid)
-        faces(3:5, j) = [6 * (zfirst - zone0 + i - 2) + f, int(nid(1), i8) * SHIFT + nid(2), &
-            int(nid(3), i8) * SHIFT + nid(4)]
-        dest(j) = par_block_owner(part%nnode, par_size(), faces(1, j) / SHIFT)
-      end do
-    end do
-    call par_route_free(faces, dest, recv)
-    deallocate(dest)
-    call move_alloc(recv, faces)
-    call sort_order(faces(1:3, :), order)
-    faces = faces(:, order)
-    deallocate(order)
     ! Quadrilaterals: node tags in $Nodes (quadrilateral order is rank
-    ! order), then [key (2), index, set, ids packed (2)] to the same owners.
+    ! order), then [key (2), index, set and tag, ids packed (2)] to the owner
+    ! of their smallest node's block of ids.
     nbad = 0
     keyed = keyed_report_t()
     allocate(send(6, part%nq), dest(part%nq))
@@ -2145,41 +2125,64 @@ contains
     end do
     call merge_capped(status, prefix, lines, nbad, 'unknown node tags in quadrilaterals')
     send = send(:, :m)
-    call par_route_free(send, dest(:m), recv)
-    deallocate(dest)
-    ! Each quadrilateral's face: the first with its nodes, preferring the
-    ! one whose orientation agrees; [global zone, face, set] to the zone's rank.
-    allocate(send(3, size(recv, 2)), dest(size(recv, 2)))
-    m = 0
-    do i = 1, size(recv, 2)
-      fk = recv(1:2, i)
-      kk = [recv(5, i) / SHIFT, modulo(recv(5, i), SHIFT), recv(6, i) / SHIFT, &
-          modulo(recv(6, i), SHIFT)]
-      j = face_lower_bound(faces, fk)
-      best = 0
-      do while (j <= size(faces, 2))
-        if (any(faces(1:2, j) /= fk)) exit
-        if (best == 0) best = j
-        cand = j
-        if (same_cycle([int(faces(4, cand) / SHIFT), int(modulo(faces(4, cand), SHIFT)), &
-            int(faces(5, cand) / SHIFT), int(modulo(faces(5, cand), SHIFT))], int(kk))) then
-          best = cand
-          exit
-        end if
-        j = j + 1
+    call par_route_free(send, dest(:m), quads)
+    deallocate(dest, ids, ans)
+    ! Each quadrilateral's face: the first (smallest 6 (zone - 1) + face)
+    ! with its nodes, or the first of those whose orientation agrees, as
+    ! build_sets takes it. The hexahedra's faces [key (2), 6 (zone - 1) +
+    ! face, ids packed (2)] go to the same owners one face direction at a
+    ! time (six rounds of nz records), each quadrilateral keeping its best
+    ! so far: best2(1) the first face, best2(2) the first that agrees.
+    allocate(best2(2, size(quads, 2)))
+    best2 = huge(1_i8)
+    do f = 1, 6
+      allocate(faces(5, nz), dest(nz))
+      do i = 1, nz
+        nid = int(range%conn(HEX_FACE_NODES(:, f), lo + i - 1) - node0)
+        faces(1:2, i) = sorted_key(nid)
+        faces(3:5, i) = [6 * (zfirst - zone0 + i - 2) + f, int(nid(1), i8) * SHIFT + nid(2), &
+            int(nid(3), i8) * SHIFT + nid(4)]
+        dest(i) = par_block_owner(part%nnode, par_size(), faces(1, i) / SHIFT)
       end do
-      if (best == 0) then
-        s = int(recv(4, i) / SHIFT)
-        call keyed%add(recv(3, i), prefix//'quadrilateral '//i8toa(modulo(recv(4, i), SHIFT))// &
+      call par_route_free(faces, dest, recv)
+      deallocate(dest)
+      call sort_order(recv(1:3, :), order)
+      do i = 1, size(quads, 2)
+        fk = quads(1:2, i)
+        kk = [quads(5, i) / SHIFT, modulo(quads(5, i), SHIFT), quads(6, i) / SHIFT, &
+            modulo(quads(6, i), SHIFT)]
+        j = face_lower_bound(recv, order, fk)
+        do while (j <= size(order))
+          cand = order(j)
+          if (any(recv(1:2, cand) /= fk)) exit
+          best2(1, i) = min(best2(1, i), recv(3, cand))
+          if (same_cycle([int(recv(4, cand) / SHIFT), int(modulo(recv(4, cand), SHIFT)), &
+              int(recv(5, cand) / SHIFT), int(modulo(recv(5, cand), SHIFT))], int(kk))) then
+            best2(2, i) = min(best2(2, i), recv(3, cand))
+            exit
+          end if
+          j = j + 1
+        end do
+      end do
+      deallocate(recv, order)
+    end do
+    ! [global zone, 6 (zone - 1) + face, set] to the zone's rank.
+    allocate(send(3, size(quads, 2)), dest(size(quads, 2)))
+    m = 0
+    do i = 1, size(quads, 2)
+      if (best2(1, i) == huge(1_i8)) then
+        s = int(quads(4, i) / SHIFT)
+        call keyed%add(quads(3, i), prefix//'quadrilateral '//i8toa(modulo(quads(4, i), SHIFT))// &
             ' of face set '''//trim(part%set_names(s))//''' matches no hexahedron face')
         cycle
       end if
       m = m + 1
-      g = zone0 + (faces(3, best) - 1) / 6 + 1
-      send(:, m) = [g, faces(3, best), recv(4, i) / SHIFT]
+      if (best2(2, i) < huge(1_i8)) best2(1, i) = best2(2, i)
+      g = zone0 + (best2(1, i) - 1) / 6 + 1
+      send(:, m) = [g, best2(1, i), quads(4, i) / SHIFT]
       dest(m) = par_block_owner(range%nzone_global, par_size(), g)
     end do
-    deallocate(recv, faces)
+    deallocate(quads, best2)
     call keyed%merge(status, prefix, 'quadrilaterals matching no hexahedron face')
     send = send(:, :m)
     call par_route_free(send, dest(:m), entries)
@@ -2265,15 +2268,17 @@ contains
     deallocate(part%hex_tag, part%quads, part%store)
   end subroutine range_add_gmsh
 
-  !> First column of the sorted faces whose key is >= fk.
-  pure integer function face_lower_bound(faces, fk) result(lo)
+  !> First position in order of the faces (sorted by order) whose key is >= fk.
+  pure integer function face_lower_bound(faces, order, fk) result(lo)
     integer(i8), intent(in) :: faces(:, :), fk(2)
+    integer, intent(in) :: order(:)
     integer :: hi, mid
     lo = 1
-    hi = size(faces, 2) + 1
+    hi = size(order) + 1
     do while (lo < hi)
       mid = (lo + hi) / 2
-      if (faces(1, mid) < fk(1) .or. (faces(1, mid) == fk(1) .and. faces(2, mid) < fk(2))) then
+      if (faces(1, order(mid)) < fk(1) .or. (faces(1, order(mid)) == fk(1) .and. &
+          faces(2, order(mid)) < fk(2))) then
         lo = mid + 1
       else
         hi = mid

@@ -23,3 +23,8 @@ impact3d_regress(parallel/weak_memory_exodus "regression;parallel"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/weak_memory_exodus
   --mpiexec ${MPIEXEC_EXECUTABLE} --problem sedov_exodus
   --exodus-box $<TARGET_FILE:exodus_box>)
+# The same for a Gmsh file (weak.write_gmsh_box, 2.2 ASCII), which rank 0
+# streams in chunks of at most 65,536 records.
+impact3d_regress(parallel/weak_memory_gmsh "regression;parallel"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/weak_memory_gmsh
+  --mpiexec ${MPIEXEC_EXECUTABLE} --problem sedov_gmsh)

@@ -49,9 +49,10 @@ corner positions, block) in both runs, plus the import's buffers, which are
 its share (the node requests and answers of its zones) or fixed (reads and
 all-to-alls of at most 65,536 records). A rank reading the whole file holds
 the whole part on top (the importer's arrays, about 155 B per zone of the
-file, and its read buffers): 3 x 64,000 more zones at N = 4, which the
-import before the reads by ranges measured as S_read(4)/S_read(1) of about
-2 (the number is in the case's README).
+file, and its read buffers): 3 x 64,000 more zones at N = 4. The import
+before the reads by ranges (rank 0 read the whole file, then scattered it)
+measured S_read(1) = 55.3 MB, S_read(4) = 85.1 MB, 1.54 (Exodus II); this
+code 33.0 and 33.1 MB, 1.003.
 """
 
 import argparse
