@@ -36,9 +36,11 @@ module mesh_gmsh
   integer, parameter :: MAX_REPORT = 10
   !> Packs two non-negative 32-bit integers into one 64-bit sort key.
   integer(i8), parameter :: SHIFT = 4294967296_i8
-  integer, parameter :: CHUNK_LEN = 1024
-  !> Records per all-to-all while rank 0 streams a file (read in chunks).
-  integer, parameter :: CHUNK = 65536
+  !> Bytes of the file read at a time.
+  integer, parameter :: BLOCK_LEN = 65536
+  !> Words (64-bit) of a chunk rank 0 sends while it streams a file (1 MB:
+  !> rank 0's buffers for a chunk, packed and received, stay near 3 MB).
+  integer, parameter :: CHUNK_WORDS = 131072
   !> What rank 0 is doing with the file: reading it whole (mesh_read_gmsh),
   !> streaming its nodes and the hexahedra's node tags (gmsh_scan), or its
   !> hexahedra and quadrilaterals (range_add_gmsh).
@@ -84,6 +86,10 @@ module mesh_gmsh
     logical :: failed = .false. !< a fatal problem was found
     character(len=:), allocatable :: message !< what it was
     character(len=:), allocatable :: section !< current $Section, for messages
+    integer(i8) :: fsize = 0 !< bytes in the file
+    integer(i8) :: fpos = 1 !< next byte of the file to read into block
+    integer :: bpos = 1, blen = 0 !< next byte of block to look at, bytes in block
+    character(len=:), allocatable :: block !< (BLOCK_LEN) the bytes read last
   end type reader_t
 
   !> Everything kept from the file, before checking and renumbering.
@@ -152,8 +158,8 @@ contains
       call status%add(prefix//'no such file')
       return
     end if
-    open(newunit=r%unit, file=path, status='old', action='read', form='formatted', &
-        access='sequential', iostat=ios, iomsg=msg)
+    open(newunit=r%unit, file=path, status='old', action='read', form='unformatted', &
+        access='stream', iostat=ios, iomsg=msg)
     if (ios /= 0) then
       call status%add(prefix//'cannot open it: '//trim(msg))
       return
@@ -161,6 +167,8 @@ contains
     r%line = ''
     r%section = ''
     r%message = ''
+    inquire(unit=r%unit, size=r%fsize)
+    allocate(character(len=BLOCK_LEN) :: r%block)
     call parse_file(r, data, prefix, status)
     close(r%unit)
     if (r%failed) then
@@ -1339,34 +1347,52 @@ contains
     end if
   end subroutine reader_fail
 
-  !> Read the next line, of any length, without its line terminator.
+  !> Read the next line, of any length, without its line terminator (LF,
+  !> with a CR before it dropped). The file is read as a byte stream in
+  !> blocks of BLOCK_LEN: gfortran's formatted non-advancing reads keep a
+  !> buffer that grew with the file (16 MB for a 12 MB mesh).
   subroutine reader_next_line(r)
     type(reader_t), intent(inout) :: r
-    character(len=CHUNK_LEN) :: chunk
     character(len=256) :: msg
-    integer :: ios, nread
+    integer :: ios, n, k
+    logical :: got
     r%line = ''
     r%pos = 1
     if (r%eof) return
+    got = .false.
     do
-      read(r%unit, '(a)', advance='no', size=nread, iostat=ios, iomsg=msg) chunk
-      if (ios == 0) then
-        r%line = r%line//chunk
-      else if (is_iostat_eor(ios)) then
-        r%line = r%line//chunk(1:nread)
-        exit
-      else if (is_iostat_end(ios)) then
-        r%line = r%line//chunk(1:nread)
-        if (len(r%line) == 0) r%eof = .true.
-        exit
+      if (r%bpos > r%blen) then
+        if (r%fpos > r%fsize) then
+          if (.not. got) then
+            r%eof = .true.
+            return
+          end if
+          exit
+        end if
+        n = int(min(int(BLOCK_LEN, i8), r%fsize - r%fpos + 1))
+        read(r%unit, pos=r%fpos, iostat=ios, iomsg=msg) r%block(1:n)
+        if (ios /= 0) then
+          r%line_number = r%line_number + 1
+          call reader_fail(r, 'cannot read: '//trim(msg))
+          r%eof = .true.
+          return
+        end if
+        r%fpos = r%fpos + n
+        r%blen = n
+        r%bpos = 1
+      end if
+      got = .true.
+      k = index(r%block(r%bpos:r%blen), achar(10))
+      if (k == 0) then
+        r%line = r%line//r%block(r%bpos:r%blen)
+        r%bpos = r%blen + 1
       else
-        r%line_number = r%line_number + 1
-        call reader_fail(r, 'cannot read: '//trim(msg))
-        r%eof = .true.
-        return
+        r%line = r%line//r%block(r%bpos:r%bpos + k - 2)
+        r%bpos = r%bpos + k
+        exit
       end if
     end do
-    if (.not. r%eof) r%line_number = r%line_number + 1
+    r%line_number = r%line_number + 1
     if (len(r%line) > 0) then
       if (r%line(len(r%line):) == achar(13)) r%line = r%line(1:len(r%line) - 1)
     end if
@@ -1589,13 +1615,13 @@ contains
       if (allocated(data%buf)) then
         if (size(data%buf, 1) /= WIDTH(cmd)) deallocate(data%buf)
       end if
-      if (.not. allocated(data%buf)) allocate(data%buf(WIDTH(cmd), CHUNK))
-      if (.not. allocated(data%buf_dest)) allocate(data%buf_dest(CHUNK))
+      if (.not. allocated(data%buf)) allocate(data%buf(WIDTH(cmd), CHUNK_WORDS / WIDTH(cmd)))
+      if (.not. allocated(data%buf_dest)) allocate(data%buf_dest(CHUNK_WORDS))
     end if
     data%nbuf = data%nbuf + 1
     data%buf(:, data%nbuf) = rec
     data%buf_dest(data%nbuf) = dest
-    if (data%nbuf == CHUNK) call flush(data)
+    if (data%nbuf == size(data%buf, 2)) call flush(data)
   end subroutine emit
 
   !> Send rank 0's chunk (every rank takes part in deliver).
@@ -1802,8 +1828,8 @@ contains
     if (.not. exists) then
       call status%add(prefix//'no such file')
     else
-      open(newunit=r%unit, file=path, status='old', action='read', form='formatted', &
-          access='sequential', iostat=ios, iomsg=msg)
+      open(newunit=r%unit, file=path, status='old', action='read', form='unformatted', &
+          access='stream', iostat=ios, iomsg=msg)
       if (ios /= 0) then
         call status%add(prefix//'cannot open it: '//trim(msg))
       else
@@ -1811,6 +1837,8 @@ contains
         r%line = ''
         r%section = ''
         r%message = ''
+        inquire(unit=r%unit, size=r%fsize)
+        allocate(character(len=BLOCK_LEN) :: r%block)
         call parse_file(r, data, prefix, status)
         close(r%unit)
         if (r%failed) then
