@@ -16,7 +16,6 @@ module app_setup
   use mesh_blocks, only: block_part_t, part_assemble, range_add_part, part_set_counts
   use mesh_local, only: mesh_t
   use mesh_range, only: mesh_range_t, range_init, range_add_box, range_add_global, &
-      range_add_scattered, &
       range_set_index, box_sizes, box_set_counts
   use mesh_distribute, only: mesh_distribute_build, distribute_stats_t
   use contact_surface, only: set_names_of
@@ -417,12 +416,8 @@ contains
           counts = int(piece%set_start(2:) - piece%set_start(:piece%nset), i8)
           allocate(sets(2, piece%nset), ord0(2, piece%nset))
           call map_sets(piece%set_name(:piece%nset))
-          if (need_global) then
-            call range_add_global(range, piece, zone0, node0, sets, ord0, lo, hi)
-          else
-            call range_add_scattered(range, piece, int(piece%nzone, i8), zone0, node0, sets, &
-                ord0, lo, hi)
-          end if
+          ! (only with the whole mesh: a part read whole on every rank)
+          call range_add_global(range, piece, zone0, node0, sets, ord0, lo, hi)
           zone0 = zone0 + piece%nzone
           node0 = node0 + piece%nnode
         end if
@@ -459,15 +454,14 @@ contains
 
   contains
 
-    !> Imported part k: rank 0 reads the file (every rank when the whole mesh
-    !> is wanted), places it and gives its zones blocks by group name; every
-    !> rank then has its problems, the blocks it claimed and the part's sizes
-    !> and set names (range_add_scattered sends the zones later).
+    !> Imported part k, first pass (collective): an Exodus II file scanned by
+    !> ranges on every rank, a Gmsh file streamed by rank 0; every rank then
+    !> has the same problems, the blocks the part claims (maps(k)) and its
+    !> sizes, and range_add_exodus or range_add_gmsh reads the zones into the
+    !> range later. With the whole mesh wanted (tests), every rank reads the
+    !> file whole, places it and gives its zones blocks by group name.
     subroutine import_part()
-      logical :: reader
-      integer :: count0, nsize(4)
-      character(len=:), allocatable :: text
-      reader = need_global .or. par_rank() == 0
+      integer :: count0
       count0 = status%count
       associate(spec => config%parts(k), piece => pieces(k))
         if (spec%mesh_type == 'exodus' .and. .not. need_global) then
@@ -518,7 +512,7 @@ contains
           end associate
           return
         end if
-        if (reader) then
+        if (need_global) then
           call mesh_import_file(spec%mesh_type, spec%mesh_path, piece, group_names, status)
           if (status%count == count0) then
             if (par_rank() == 0) then
@@ -544,43 +538,8 @@ contains
             end if
           end if
         end if
-        if (need_global) return
-        ! Rank 0's problems, claims and sizes to every rank.
-        nsize = [status%count - count0, piece%nzone, piece%nnode, piece%nset]
-        call par_bcast(nsize)
-        do n = 1, nsize(1)
-          text = ''
-          if (par_rank() == 0) text = trim(status%messages(min(count0 + n, size( &
-              status%messages))))
-          call bcast_text(text)
-          if (par_rank() /= 0) call status%add(text)
-        end do
-        if (nsize(1) > 0) return
-        call par_bcast(claimed)
-        call bcast_text(imported)
-        if (par_rank() /= 0) then
-          piece%nzone = nsize(2)
-          piece%nnode = nsize(3)
-          piece%nset = nsize(4)
-          allocate(piece%set_name(piece%nset), piece%set_start(piece%nset + 1))
-        end if
-        call par_bcast(piece%set_name)
-        call par_bcast(piece%set_start)
       end associate
     end subroutine import_part
-
-    !> text from rank 0 on every rank.
-    subroutine bcast_text(text)
-      character(len=:), allocatable, intent(inout) :: text
-      integer :: length(1)
-      length = len(text)
-      call par_bcast(length)
-      if (par_rank() /= 0) then
-        deallocate(text)
-        allocate(character(len=length(1)) :: text)
-      end if
-      call par_bcast(text)
-    end subroutine bcast_text
 
     !> The part's rotation and offset on the range's zones lo..hi.
     subroutine place(lo, hi)
