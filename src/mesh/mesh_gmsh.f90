@@ -1880,9 +1880,9 @@ contains
     if (par_rank() == 0 .and. status%count == count0) call scan_groups(data, prefix, part, status)
     ! Rank 0's problems to every rank.
     allocate(lines(0))
-    if (par_rank() == 0) then
+    if (par_rank() == 0 .and. status%count > count0) then
       deallocate(lines)
-      allocate(lines(min(status%count, size(status%messages)) - count0))
+      allocate(lines(max(0, min(status%count, size(status%messages)) - count0)))
       do i = 1, size(lines)
         lines(i) = status%messages(count0 + i)
       end do
