@@ -6,14 +6,16 @@ module app_setup
   use core_status, only: status_t
   use core_timer, only: timers_t
   use core_names, only: name_hint
+  use core_memory, only: peak_memory_mb
   use mesh_geometry, only: hex_centroid
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
+  use mesh_exodus, only: exodus_part_t, exodus_scan, range_add_exodus
+  use mesh_gmsh, only: gmsh_part_t, gmsh_scan, range_add_gmsh
   use mesh_curved, only: curved_part
   use mesh_blocks, only: block_part_t, part_assemble, range_add_part, part_set_counts
   use mesh_local, only: mesh_t
   use mesh_range, only: mesh_range_t, range_init, range_add_box, range_add_global, &
-      range_add_scattered, &
       range_set_index, box_sizes, box_set_counts
   use mesh_distribute, only: mesh_distribute_build, distribute_stats_t
   use contact_surface, only: set_names_of
@@ -34,7 +36,7 @@ module app_setup
   use io_probe, only: probes_t, probe_setup
   use app_provenance, only: restart_deck_check
   use material_table, only: STRENGTH_NONE
-  use parallel_env, only: par_size, par_rank, par_bcast, par_sum, par_max
+  use parallel_env, only: par_size, par_rank, par_bcast, par_sum, par_max, par_allgather
   use parallel_route, only: par_max_i8
   implicit none
   private
@@ -44,6 +46,11 @@ module app_setup
   type :: block_part_holder_t
     class(block_part_t), allocatable :: part
   end type block_part_holder_t
+
+  !> The &block of each volume group of an imported part.
+  type :: group_map_t
+    integer, allocatable :: block(:)
+  end type group_map_t
 
 contains
 
@@ -195,23 +202,39 @@ contains
     logical, intent(inout) :: claimed(:) !< per &block
     type(status_t), intent(inout) :: status
     integer, allocatable :: map(:)
-    integer :: g, b, z
+    integer :: g, z
+    call group_block_map(config, where, kind, path, group_names, [(any(global%zone_block == g), &
+        g = 1, size(group_names))], claimed, map, status)
+    if (.not. status%ok()) return
+    do z = 1, global%nzone
+      global%zone_block(z) = map(global%zone_block(z))
+    end do
+  end subroutine assign_blocks_by_name
+
+  !> map(g): the &block named after volume group g of an imported part (0 =
+  !> none: a problem if the group holds zones); the blocks of groups with
+  !> zones are claimed by this part.
+  subroutine group_block_map(config, where, kind, path, group_names, used, claimed, map, status)
+    type(config_t), intent(in) :: config
+    character(len=*), intent(in) :: where, kind, path
+    character(len=*), intent(in) :: group_names(:)
+    logical, intent(in) :: used(:) !< group g holds zones
+    logical, intent(inout) :: claimed(:) !< per &block
+    integer, allocatable, intent(out) :: map(:)
+    type(status_t), intent(inout) :: status
+    integer :: g, b
     allocate(map(size(group_names)))
     map = 0
     do g = 1, size(group_names)
       do b = 1, size(config%blocks)
         if (config%blocks(b)%name == group_names(g)) map(g) = b
       end do
-      if (map(g) == 0 .and. any(global%zone_block == g)) call status%add(trim(where)// &
+      if (map(g) == 0 .and. used(g)) call status%add(trim(where)// &
           ': file: the '//kind//' '''//trim(group_names(g))//''' of mesh file '''//path// &
           ''' has no &block of that name'//name_hint(group_names(g), config%blocks%name))
-      if (map(g) > 0 .and. any(global%zone_block == g)) claimed(map(g)) = .true.
+      if (map(g) > 0 .and. used(g)) claimed(map(g)) = .true.
     end do
-    if (.not. status%ok()) return
-    do z = 1, global%nzone
-      global%zone_block(z) = map(global%zone_block(z))
-    end do
-  end subroutine assign_blocks_by_name
+  end subroutine group_block_map
 
   !> Build this rank's mesh: every &mesh part in deck order, each rank
   !> generating only its contiguous range of the global zone ids (box and
@@ -235,9 +258,12 @@ contains
     character(len=NAME_LEN), allocatable :: group_names(:)
     type(global_mesh_t), allocatable :: pieces(:)
     type(block_part_holder_t), allocatable :: curved(:)
+    type(exodus_part_t), allocatable :: exodus(:)
+    type(gmsh_part_t), allocatable :: gmsh(:)
+    type(group_map_t), allocatable :: maps(:)
     type(mesh_range_t) :: range
     type(distribute_stats_t) :: stats
-    integer :: k, n, b, nx, ny, nz, lo, hi, z, m
+    integer :: k, n, b, nx, ny, nz, lo, hi, z, m, count_before
     integer(i8) :: nzone, nnode, zone0, node0
     integer, allocatable :: sets(:, :)
     integer(i8), allocatable :: ord0(:, :), counts(:)
@@ -257,6 +283,7 @@ contains
     ! Imported parts are read whole (with their blocks, rotation and offset);
     ! boxes and curved parts only counted (built whole too for tests, whole).
     allocate(pieces(size(config%parts)), curved(size(config%parts)))
+    allocate(exodus(size(config%parts)), maps(size(config%parts)), gmsh(size(config%parts)))
     nzone = 0
     nnode = 0
     part_block = 0
@@ -341,6 +368,8 @@ contains
     do k = 1, size(config%parts)
       associate(spec => config%parts(k), piece => pieces(k))
         is_box = spec%mesh_type == 'box'
+        where = '&mesh'
+        if (size(config%parts) > 1) write(where, '(a,i0,a)') '&mesh(', k, ')'
         if (allocated(curved(k)%part)) then
           counts = part_set_counts(curved(k)%part)
           allocate(sets(2, size(counts)), ord0(2, size(counts)))
@@ -363,17 +392,52 @@ contains
           if (hi >= lo) range%zone_block(lo:hi) = part_block(k)
           zone0 = zone0 + int(nx, i8) * ny * nz
           node0 = node0 + int(nx + 1, i8) * (ny + 1) * (nz + 1)
+        else if (allocated(exodus(k)%path)) then
+          ! An Exodus II file read by ranges on every rank.
+          counts = exodus(k)%set_size
+          allocate(sets(2, exodus(k)%nset), ord0(2, exodus(k)%nset))
+          call map_sets(exodus(k)%set_names)
+          count_before = status%count
+          call range_add_exodus(range, exodus(k), zone0, node0, sets, ord0, lo, hi, &
+              trim(where)//': '//trim(spec%mesh_type)//' mesh file '''//spec%mesh_path// &
+              ''' read:', lines, status)
+          if (par_rank() == 0 .and. status%count == count_before) write(output_unit, '(a)') &
+              (trim(lines(n)), n = 1, size(lines))
+          if (hi >= lo) range%zone_block(lo:hi) = int(maps(k)%block(range%zone_block(lo:hi)), ik)
+          call place(lo, hi)
+          zone0 = zone0 + exodus(k)%nelem
+          node0 = node0 + exodus(k)%nnode
+        else if (allocated(gmsh(k)%path)) then
+          ! A Gmsh file streamed by rank 0 in chunks; the sets' sizes come
+          ! with the faces.
+          allocate(counts(size(gmsh(k)%set_names)))
+          counts = 0
+          allocate(sets(2, size(counts)), ord0(2, size(counts)))
+          call map_sets(gmsh(k)%set_names)
+          count_before = status%count
+          call range_add_gmsh(range, gmsh(k), zone0, node0, sets, ord0, lo, hi, &
+              trim(where)//': '//trim(spec%mesh_type)//' mesh file '''//spec%mesh_path// &
+              ''' read:', lines, status)
+          do n = 1, size(counts)
+            do m = 1, 2
+              if (sets(m, n) > 0) range%set_count(sets(m, n)) = range%set_count(sets(m, n)) + &
+                  gmsh(k)%set_count(n)
+            end do
+          end do
+          if (par_rank() == 0 .and. status%count == count_before) write(output_unit, '(a)') &
+              (trim(lines(n)), n = 1, size(lines))
+          if (hi >= lo .and. status%ok()) range%zone_block(lo:hi) = &
+              int(maps(k)%block(range%zone_block(lo:hi)), ik)
+          call place(lo, hi)
+          zone0 = zone0 + gmsh(k)%nhex
+          node0 = node0 + gmsh(k)%nnode
         else
           allocate(counts(piece%nset))
           counts = int(piece%set_start(2:) - piece%set_start(:piece%nset), i8)
           allocate(sets(2, piece%nset), ord0(2, piece%nset))
           call map_sets(piece%set_name(:piece%nset))
-          if (need_global) then
-            call range_add_global(range, piece, zone0, node0, sets, ord0, lo, hi)
-          else
-            call range_add_scattered(range, piece, int(piece%nzone, i8), zone0, node0, sets, &
-                ord0, lo, hi)
-          end if
+          ! (only with the whole mesh: a part read whole on every rank)
+          call range_add_global(range, piece, zone0, node0, sets, ord0, lo, hi)
           zone0 = zone0 + piece%nzone
           node0 = node0 + piece%nnode
         end if
@@ -383,6 +447,7 @@ contains
       end associate
     end do
     call timers%stop('mesh generate')
+    call read_memory_report()
     call assign_blocks(config, range, status, claimed)
     if (need_global) then
       do z = 1, global%nzone
@@ -409,18 +474,65 @@ contains
 
   contains
 
-    !> Imported part k: rank 0 reads the file (every rank when the whole mesh
-    !> is wanted), places it and gives its zones blocks by group name; every
-    !> rank then has its problems, the blocks it claimed and the part's sizes
-    !> and set names (range_add_scattered sends the zones later).
+    !> Imported part k, first pass (collective): an Exodus II file scanned by
+    !> ranges on every rank, a Gmsh file streamed by rank 0; every rank then
+    !> has the same problems, the blocks the part claims (maps(k)) and its
+    !> sizes, and range_add_exodus or range_add_gmsh reads the zones into the
+    !> range later. With the whole mesh wanted (tests), every rank reads the
+    !> file whole, places it and gives its zones blocks by group name.
     subroutine import_part()
-      logical :: reader
-      integer :: count0, nsize(4)
-      character(len=:), allocatable :: text
-      reader = need_global .or. par_rank() == 0
+      integer :: count0
       count0 = status%count
       associate(spec => config%parts(k), piece => pieces(k))
-        if (reader) then
+        if (spec%mesh_type == 'exodus' .and. .not. need_global) then
+          ! Every rank reads its ranges (exodus_scan now, range_add_exodus later).
+          call exodus_scan(spec%mesh_path, exodus(k), status)
+          if (status%count > count0) return
+          associate(x => exodus(k))
+            if (part_block(k) > 0) then
+              allocate(maps(k)%block(x%nblock))
+              maps(k)%block = part_block(k)
+            else
+              call group_block_map(config, where, mesh_import_group_kind(spec%mesh_type), &
+                  spec%mesh_path, x%block_names, x%block_start(2:) > x%block_start(:x%nblock), &
+                  claimed, maps(k)%block, status)
+              imported = imported//'; '//mesh_import_group_kind(spec%mesh_type)//'s of '''// &
+                  spec%mesh_path//''':'
+              do n = 1, x%nblock
+                if (x%block_start(n + 1) > x%block_start(n)) imported = imported//' '// &
+                    trim(x%block_names(n))
+              end do
+            end if
+            piece%nzone = x%nelem
+            piece%nnode = int(x%nnode)
+            piece%nset = x%nset
+          end associate
+          return
+        end if
+        if (spec%mesh_type == 'gmsh' .and. .not. need_global) then
+          ! Rank 0 streams the file in chunks (gmsh_scan now, range_add_gmsh later).
+          call gmsh_scan(spec%mesh_path, gmsh(k), status)
+          if (status%count > count0) return
+          associate(x => gmsh(k))
+            if (part_block(k) > 0) then
+              allocate(maps(k)%block(size(x%block_tags)))
+              maps(k)%block = part_block(k)
+            else
+              call group_block_map(config, where, mesh_import_group_kind(spec%mesh_type), &
+                  spec%mesh_path, x%block_names, x%block_used, claimed, maps(k)%block, status)
+              imported = imported//'; '//mesh_import_group_kind(spec%mesh_type)//'s of '''// &
+                  spec%mesh_path//''':'
+              do n = 1, size(x%block_tags)
+                if (x%block_used(n)) imported = imported//' '//trim(x%block_names(n))
+              end do
+            end if
+            piece%nzone = int(x%nhex)
+            piece%nnode = int(x%nnode)
+            piece%nset = size(x%set_tags)
+          end associate
+          return
+        end if
+        if (need_global) then
           call mesh_import_file(spec%mesh_type, spec%mesh_path, piece, group_names, status)
           if (status%count == count0) then
             if (par_rank() == 0) then
@@ -446,43 +558,8 @@ contains
             end if
           end if
         end if
-        if (need_global) return
-        ! Rank 0's problems, claims and sizes to every rank.
-        nsize = [status%count - count0, piece%nzone, piece%nnode, piece%nset]
-        call par_bcast(nsize)
-        do n = 1, nsize(1)
-          text = ''
-          if (par_rank() == 0) text = trim(status%messages(min(count0 + n, size( &
-              status%messages))))
-          call bcast_text(text)
-          if (par_rank() /= 0) call status%add(text)
-        end do
-        if (nsize(1) > 0) return
-        call par_bcast(claimed)
-        call bcast_text(imported)
-        if (par_rank() /= 0) then
-          piece%nzone = nsize(2)
-          piece%nnode = nsize(3)
-          piece%nset = nsize(4)
-          allocate(piece%set_name(piece%nset), piece%set_start(piece%nset + 1))
-        end if
-        call par_bcast(piece%set_name)
-        call par_bcast(piece%set_start)
       end associate
     end subroutine import_part
-
-    !> text from rank 0 on every rank.
-    subroutine bcast_text(text)
-      character(len=:), allocatable, intent(inout) :: text
-      integer :: length(1)
-      length = len(text)
-      call par_bcast(length)
-      if (par_rank() /= 0) then
-        deallocate(text)
-        allocate(character(len=length(1)) :: text)
-      end if
-      call par_bcast(text)
-    end subroutine bcast_text
 
     !> The part's rotation and offset on the range's zones lo..hi.
     subroutine place(lo, hi)
@@ -522,6 +599,20 @@ contains
     end subroutine map_sets
 
   end subroutine setup_mesh
+
+  !> One line on the peak memory of the ranks once the mesh is generated or
+  !> read (each rank holding its range of the zones, before partitioning):
+  !> what reading a mesh file costs the ranks, rank 0 included.
+  subroutine read_memory_report()
+    real(rk) :: mine(1)
+    real(rk), allocatable :: all(:, :)
+    mine(1) = peak_memory_mb()
+    allocate(all(1, par_size()))
+    call par_allgather(mine, all)
+    if (par_rank() == 0) write(output_unit, '(a,f0.1,a,f0.1,a,i0,a)') &
+        'mesh read: peak memory per rank (VmHWM) so far: rank 0 ', all(1, 1), ' MB, largest ', &
+        maxval(all(1, :)), ' MB (rank ', maxloc(all(1, :), dim=1) - 1, ')'
+  end subroutine read_memory_report
 
   !> One line on the partition: parts, faces cut, the largest rank's zones
   !> over the mean, ghost nodes and set-up bytes sent (largest rank).

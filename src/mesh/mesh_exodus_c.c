@@ -76,3 +76,24 @@ int impact3d_exo_side_set(int exoid, int id, int *elem, int *side)
 {
   return ex_get_set(exoid, EX_SIDE_SET, id, elem, side) < 0 ? -1 : 0;
 }
+
+/* Reads by ranges (every rank reads its own part of the file): nodes
+ * start..start+n-1 (1-based), elements start..start+n-1 of block id,
+ * entries start..start+n-1 of side set id. */
+int impact3d_exo_partial_coord(int exoid, int start, int n, double *x, double *y, double *z)
+{
+  if (n <= 0) return 0;
+  return ex_get_partial_coord(exoid, start, n, x, y, z) < 0 ? -1 : 0;
+}
+
+int impact3d_exo_partial_conn(int exoid, int id, int start, int n, int *conn)
+{
+  if (n <= 0) return 0;
+  return ex_get_partial_conn(exoid, EX_ELEM_BLOCK, id, start, n, conn, NULL, NULL) < 0 ? -1 : 0;
+}
+
+int impact3d_exo_partial_side_set(int exoid, int id, int start, int n, int *elem, int *side)
+{
+  if (n <= 0) return 0;
+  return ex_get_partial_side_set(exoid, id, start, n, elem, side) < 0 ? -1 : 0;
+}

@@ -9,14 +9,11 @@ module mesh_range
   use core_status, only: status_t
   use mesh_global, only: global_mesh_t, box_spec_t, interval_points, box_position, NAME_LEN
   use parallel_env, only: par_rank, par_size
-  use parallel_route, only: par_block_range, par_block_owner, par_route_free
+  use parallel_route, only: par_block_range
   implicit none
   private
   public :: range_init, range_add_box, range_add_global, range_set_index, box_sizes, &
-      range_grow_faces, box_set_counts, range_add_scattered
-
-  !> Records per all-to-all when rank 0 scatters an imported part.
-  integer, parameter :: SCATTER_CHUNK = 65536
+      range_grow_faces, box_set_counts
 
   type, public :: mesh_range_t
     integer(i8) :: nzone_global = 0 !< zones of the whole mesh
@@ -225,100 +222,6 @@ contains
     end do
     range%nface = pos
   end subroutine range_add_global
-
-  !> range_add_global for a part that only rank 0 holds (an imported mesh
-  !> file, read once): rank 0 sends each rank the zones of its range (global
-  !> node ids, corner positions bit for bit, block) and their set faces, in
-  !> all-to-alls of at most SCATTER_CHUNK records each (so rank 0's buffers
-  !> are bounded, not sized by the part); the other ranks pass piece with its
-  !> sizes and set list only. The range comes out as range_add_global makes
-  !> it. Collective.
-  subroutine range_add_scattered(range, piece, nzone, zone0, node0, sets, ord0, lo, hi)
-    type(mesh_range_t), intent(inout) :: range
-    type(global_mesh_t), intent(in) :: piece !< the whole part on rank 0
-    integer(i8), intent(in) :: nzone !< the part's zones (every rank)
-    integer(i8), intent(in) :: zone0, node0
-    integer, intent(in) :: sets(:, :) !< (2, nset of the part)
-    integer(i8), intent(in) :: ord0(:, :) !< (2, nset of the part)
-    integer, intent(out) :: lo, hi
-    integer, parameter :: ZW = 1 + 8 + 24 + 1, FW = 4
-    integer(i8), allocatable :: send(:, :), recv(:, :)
-    integer, allocatable :: dest(:)
-    integer(i8) :: zfirst, zlast, g, first, nface
-    integer :: z, c, local, k, s, m, pos, nnew, nsend, i
-    zfirst = max(zone0 + 1, range%first)
-    zlast = min(zone0 + nzone, range%first + range%nzone - 1)
-    lo = int(zfirst - range%first) + 1
-    hi = int(zlast - range%first) + 1
-    ! Zones: [global id, 8 node ids, 24 corner coordinates, block].
-    do first = 1, nzone, SCATTER_CHUNK
-      nsend = 0
-      if (par_rank() == 0) nsend = int(min(int(SCATTER_CHUNK, i8), nzone - first + 1))
-      allocate(send(ZW, nsend), dest(nsend))
-      do i = 1, nsend
-        z = int(first) + i - 1
-        g = zone0 + z
-        send(1, i) = g
-        send(2:9, i) = node0 + int(piece%connectivity(:, z), i8)
-        do c = 1, 8
-          send(10 + 3 * (c - 1):12 + 3 * (c - 1), i) = transfer(piece%coordinates(:, &
-              piece%connectivity(c, z)), 0_i8, 3)
-        end do
-        send(ZW, i) = int(piece%zone_block(z), i8)
-        dest(i) = par_block_owner(range%nzone_global, par_size(), g)
-      end do
-      call par_route_free(send, dest, recv)
-      deallocate(dest)
-      do k = 1, size(recv, 2)
-        local = int(recv(1, k) - range%first) + 1
-        range%conn(:, local) = recv(2:9, k)
-        do c = 1, 8
-          range%corner_x(:, c, local) = transfer(recv(10 + 3 * (c - 1):12 + 3 * (c - 1), k), &
-              0.0_rk, 3)
-        end do
-        range%zone_block(local) = int(recv(ZW, k), ik)
-      end do
-    end do
-    ! Set faces, in the part's set order as range_add_global adds them:
-    ! [global zone id, face, set of the part, place in the set].
-    nface = piece%set_start(piece%nset + 1) - 1
-    k = 1
-    do first = 1, nface, SCATTER_CHUNK
-      nsend = 0
-      if (par_rank() == 0) nsend = int(min(int(SCATTER_CHUNK, i8), nface - first + 1))
-      allocate(send(FW, nsend), dest(nsend))
-      do i = 1, nsend
-        s = int(first) + i - 1
-        do while (s >= piece%set_start(k + 1))
-          k = k + 1
-        end do
-        g = zone0 + piece%set_zone(s)
-        send(:, i) = [g, int(piece%set_face(s), i8), int(k, i8), &
-            int(s - piece%set_start(k) + 1, i8)]
-        dest(i) = par_block_owner(range%nzone_global, par_size(), g)
-      end do
-      call par_route_free(send, dest, recv)
-      deallocate(dest)
-      nnew = 0
-      do i = 1, size(recv, 2)
-        nnew = nnew + count(sets(:, int(recv(3, i))) > 0)
-      end do
-      call range_grow_faces(range, nnew)
-      pos = range%nface
-      do i = 1, size(recv, 2)
-        do m = 1, 2
-          s = int(recv(3, i))
-          if (sets(m, s) == 0) cycle
-          pos = pos + 1
-          range%face_set(pos) = sets(m, s)
-          range%face_zone(pos) = int(recv(1, i) - range%first) + 1
-          range%face_face(pos) = int(recv(2, i))
-          range%face_ord(pos) = ord0(m, s) + recv(4, i)
-        end do
-      end do
-      range%nface = pos
-    end do
-  end subroutine range_add_scattered
 
   !> Room for n more set faces.
   subroutine range_grow_faces(range, n)

@@ -10,7 +10,7 @@ module parallel_route
   implicit none
   private
   public :: par_route, par_route_free, par_min_array, par_block_range, par_block_owner, par_ordered_sum, par_max_i8, par_min_i8, &
-      par_exscan_i8
+      par_exscan_i8, par_allgather_text, par_route_rounds
 
 contains
 
@@ -218,5 +218,45 @@ contains
         par_comm())
     call MPI_Bcast(total, ncomp, MPI_DOUBLE_PRECISION, nrank - 1, par_comm())
   end subroutine par_ordered_sum
+
+  !> all = every rank's lines, rank after rank (set-up messages found by
+  !> ranges of a file, merged so that every rank holds the same list).
+  subroutine par_allgather_text(lines, all)
+    character(len=*), intent(in) :: lines(:)
+    character(len=len(lines)), allocatable, intent(out) :: all(:)
+    integer :: nrank, r
+    integer :: n(1)
+    integer, allocatable :: counts(:), displ(:)
+    character(len=len(lines)) :: dummy(1)
+    nrank = par_size()
+    allocate(counts(0:nrank - 1), displ(0:nrank - 1))
+    n(1) = size(lines)
+    call MPI_Allgather(n, 1, MPI_INTEGER, counts, 1, MPI_INTEGER, par_comm())
+    displ(0) = 0
+    do r = 1, nrank - 1
+      displ(r) = displ(r - 1) + counts(r - 1)
+    end do
+    allocate(all(sum(counts)))
+    if (size(all) == 0) return
+    if (size(lines) > 0) then
+      call MPI_Allgatherv(lines, len(lines) * size(lines), MPI_CHARACTER, all, &
+          len(lines) * counts, len(lines) * displ, MPI_CHARACTER, par_comm())
+    else
+      call MPI_Allgatherv(dummy, 0, MPI_CHARACTER, all, len(lines) * counts, &
+          len(lines) * displ, MPI_CHARACTER, par_comm())
+    end if
+  end subroutine par_allgather_text
+
+  !> All-to-all rounds needed when every rank sends its n records in chunks
+  !> of at most chunk (the largest rank's count of chunks; at least 1).
+  function par_route_rounds(n, chunk) result(rounds)
+    integer(i8), intent(in) :: n
+    integer, intent(in) :: chunk
+    integer :: rounds
+    integer(i8) :: mine, most
+    mine = max(1_i8, (n + chunk - 1) / chunk)
+    call MPI_Allreduce(mine, most, 1, MPI_INTEGER8, MPI_MAX, par_comm())
+    rounds = int(most)
+  end function par_route_rounds
 
 end module parallel_route

@@ -51,6 +51,69 @@ def sedov_stack_deck(k, n, dumps=True):
 """
 
 
+def sedov_import_deck(k, n, mesh_type, mesh_file, dumps=True):
+    """Deck text: the stacked Sedov box read from mesh_file (type 'gmsh' or
+    'exodus'; element block or physical volume 'all', face sets xmin ...
+    zmax), as write_gmsh_box and tests/tools/exodus_box write it."""
+    text = sedov_stack_deck(k, n, dumps)
+    start, end = text.index("&mesh"), text.index("/", text.index("&mesh")) + 1
+    return text[:start] + f"&mesh type = '{mesh_type}', file = '{mesh_file}' /" + text[end:]
+
+
+def write_gmsh_box(path, nx, ny, nz, lx, ly, lz):
+    """A Gmsh 2.2 ASCII box [0, lx] x [0, ly] x [0, lz] of nx x ny x nz
+    hexahedra (physical volume 'all', tag 1), numbered i fastest as the box
+    generator numbers them, with quadrilaterals in the physical surfaces
+    xmin, xmax, ymin, ymax, zmin, zmax (tags 1-6), outward."""
+    def node(i, j, k):
+        return 1 + i + (nx + 1) * (j + (ny + 1) * k)
+    quads = []
+    for k in range(nz):
+        for j in range(ny):
+            quads.append((1, (node(0, j, k), node(0, j, k + 1), node(0, j + 1, k + 1),
+                              node(0, j + 1, k))))
+            quads.append((2, (node(nx, j, k), node(nx, j + 1, k), node(nx, j + 1, k + 1),
+                              node(nx, j, k + 1))))
+    for k in range(nz):
+        for i in range(nx):
+            quads.append((3, (node(i, 0, k), node(i + 1, 0, k), node(i + 1, 0, k + 1),
+                              node(i, 0, k + 1))))
+            quads.append((4, (node(i, ny, k), node(i, ny, k + 1), node(i + 1, ny, k + 1),
+                              node(i + 1, ny, k))))
+    for j in range(ny):
+        for i in range(nx):
+            quads.append((5, (node(i, j, 0), node(i, j + 1, 0), node(i + 1, j + 1, 0),
+                              node(i + 1, j, 0))))
+            quads.append((6, (node(i, j, nz), node(i + 1, j, nz), node(i + 1, j + 1, nz),
+                              node(i, j + 1, nz))))
+    nnode = (nx + 1) * (ny + 1) * (nz + 1)
+    with open(path, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n7\n")
+        for t, name in enumerate(("xmin", "xmax", "ymin", "ymax", "zmin", "zmax"), start=1):
+            f.write(f'2 {t} "{name}"\n')
+        f.write('3 1 "all"\n$EndPhysicalNames\n$Nodes\n%d\n' % nnode)
+        for k in range(nz + 1):
+            for j in range(ny + 1):
+                f.write("".join(f"{node(i, j, k)} {repr(lx * i / nx)} {repr(ly * j / ny)} "
+                                f"{repr(lz * k / nz)}\n" for i in range(nx + 1)))
+        f.write("$EndNodes\n$Elements\n%d\n" % (len(quads) + nx * ny * nz))
+        e = 0
+        for tag, q in quads:
+            e += 1
+            f.write(f"{e} 3 2 {tag} {tag} {q[0]} {q[1]} {q[2]} {q[3]}\n")
+        for k in range(nz):
+            for j in range(ny):
+                rows = []
+                for i in range(nx):
+                    e += 1
+                    c = (node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k),
+                         node(i, j + 1, k), node(i, j, k + 1), node(i + 1, j, k + 1),
+                         node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1))
+                    rows.append(f"{e} 5 2 1 1 " + " ".join(map(str, c)) + "\n")
+                f.write("".join(rows))
+        f.write("$EndElements\n")
+
+
 def parse_report(text):
     """The run report's figures: memory (MB), set-up phases (s), partition
     and halo lines."""
@@ -60,6 +123,10 @@ def parse_report(text):
     if m:
         out["rss_rank0"], out["rss_median"], out["rss_largest"] = (float(m.group(i))
                                                                   for i in (1, 2, 3))
+    m = re.search(r"mesh read: peak memory per rank \(VmHWM\) so far: rank 0 ([\d.]+) MB, "
+                  r"largest ([\d.]+) MB", text)
+    if m:
+        out["rss_read_rank0"], out["rss_read_largest"] = float(m.group(1)), float(m.group(2))
     for name in ("set-up",) + SETUP_PHASES + ("step",):
         m = re.search(r"^\s+" + re.escape(name) + r"\s+([\d.]+)", text, re.M)
         if m:
