@@ -439,7 +439,7 @@ contains
     do i = 1, ct%nown
       speed = max(speed, norm2(v_old(:, ct%own_local(i))))
     end do
-    ct%speed = par_max(speed)
+    ct%speed = par_max(speed, ct%traffic)
     call lap(ct%wait_seconds)
     rebuilt = cycle >= ct%next_search .or. .not. allocated(ct%all_of)
     ! After a restart the first search only rebuilds what the dump does not
@@ -449,7 +449,7 @@ contains
     if (rebuilt .and. cycle < ct%resumed_search) ct%next_search = ct%resumed_search
     ct%resumed_search = -1
     call lap(ct%search_seconds)
-    call gather_nodes(ct, x_old, v_old, force)
+    call gather_nodes(ct, x_old, v_old, force, .true.)
     call lap(ct%migrate_seconds)
     if (rebuilt) then
       call contact_localize(ct, sel)
@@ -466,7 +466,7 @@ contains
       ! start from the force with the deck interfaces' contact forces in it:
       ! where the first pass matched the two sides nothing is left to do,
       ! and master nodes that cross the slave surface are caught.
-      call gather_nodes(ct, x_old, v_old, force)
+      call gather_nodes(ct, x_old, v_old, force, .true.)
       call lap(ct%migrate_seconds)
       call stage_round(ct%ndeck + 1, ct%npair)
     end if
@@ -479,6 +479,7 @@ contains
       end do
     end if
     if (final) call reduce_diagnostics(ct, has)
+    if (final) ct%cycles = ct%cycles + 1
     call lap(ct%migrate_seconds)
 
   contains
@@ -515,7 +516,7 @@ contains
         do k = first, last
           associate(p => ct%pairs(k))
             if (r > p%method%rounds()) cycle
-            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown)
+            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown, ct%traffic)
             allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
             call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
                 fck(:, :, k), has(:, k))
@@ -563,10 +564,10 @@ contains
         sums = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
             real(count(p%was_active .and. .not. has(:, k)), rk)]
         p%was_active = has(:, k)
-        call par_sum_array(sums)
+        call par_sum_array(sums, ct%traffic)
         p%pen_sq = sums(3)
         p%pen_weight = sums(4)
-        pen_max = par_max(s%pen_max)
+        pen_max = par_max(s%pen_max, ct%traffic)
         ! pen_rms: over the method's weights (DLM: overlap area, DAM: slaves).
         p%diag(1:8) = [sums(1), sums(2), pen_max, p%method%pen_rms(sums(3), sums(4)), &
             sums(8), sums(5:7)]
@@ -607,8 +608,16 @@ contains
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
     real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit
+    real(rk) :: bytes, messages, exchanges, collectives, comm, per
     integer :: largest, smallest, k
     if (ct%npair == 0) return
+    ! The traffic per cycle, each figure its largest rank's.
+    per = 1.0_rk / real(max(ct%cycles, 1_i8), rk)
+    bytes = par_max(real(ct%traffic%bytes, rk)) * per
+    messages = par_max(real(ct%traffic%messages, rk)) * per
+    exchanges = par_max(real(ct%traffic%exchanges, rk)) * per
+    collectives = par_max(real(ct%traffic%collectives, rk)) * per
+    comm = par_max(ct%traffic%wait_seconds)
     search = par_max(ct%search_seconds)
     enforce = par_max(ct%enforce_seconds)
     migrate = par_max(ct%migrate_seconds)
@@ -641,9 +650,18 @@ contains
     write(output_unit, '(a,f10.3,a,i0,a,f6.1,a)') 'impact3d: contact audit ', audit, ' s (', &
         ct%audits, ' audits, ', 100.0_rk * audit / max(loop, 1.0e-9_rk), &
         '% of the loop; largest over the ranks, not in the contact times above)'
-    if (par_size() > 1) write(output_unit, '(a,f10.3,a)') 'impact3d: contact entry wait ', &
-        wait, ' s (the other ranks'' hydro: load imbalance; largest over the ranks, not in the '// &
-        'contact times)'
+    if (par_size() > 1) then
+      write(output_unit, '(a,f10.3,a)') 'impact3d: contact entry wait ', wait, &
+          ' s (the other ranks'' hydro: load imbalance; largest over the ranks, not in the '// &
+          'contact times)'
+      write(output_unit, '(a,f0.1,a,f0.1,a,f0.1,a,f0.1,a,f0.1,a)') &
+          'impact3d: contact exchange per cycle, largest rank: ', bytes / 1.0e3_rk, ' kB in ', &
+          messages, ' messages; ', exchanges + collectives, ' synchronisations (', exchanges, &
+          ' point-to-point exchanges, ', collectives, ' collectives)'
+      write(output_unit, '(a,f10.3,a)') 'impact3d: contact communication calls ', comm, &
+          ' s (waiting for the other ranks and transfer; largest over the ranks, in the '// &
+          'contact times)'
+    end if
     write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'impact3d: contact local sets ', smallest, &
         ' to ', largest, ' nodes per rank of ', ct%nall, ' contact nodes; ', ct%rebuilds, &
         ' global searches'

@@ -9,7 +9,7 @@
 !> (take moves them in and out of the caller's long-lived holder).
 module contact_records
   use core_kinds, only: rk, i8
-  use parallel_env, only: par_size
+  use parallel_env, only: par_size, traffic_t
   use parallel_exchange, only: par_exchange, par_exchange_counts
   implicit none
   private
@@ -76,11 +76,12 @@ contains
   !> key) order, so a node's records arrive as one ascending run per part:
   !> a stable bucket sort by node and an insertion sort of each (short,
   !> nearly sorted) bucket put them in order in linear time.
-  subroutine send_records(r, owner, own_of, nown)
+  subroutine send_records(r, owner, own_of, nown, traffic)
     type(records_t), intent(inout) :: r
     integer, intent(in) :: owner(:) !< (nall) mesh-owner rank of each contact node
     integer, intent(in) :: own_of(:) !< (nall) owned index on this rank, 0 if not owned
     integer, intent(in) :: nown !< owned contact nodes of this rank
+    type(traffic_t), intent(inout) :: traffic
     integer, allocatable :: count(:), got(:), fill(:)
     integer(i8) :: id(3)
     real(rk) :: val(r%nv)
@@ -106,9 +107,9 @@ contains
       r%isend(3 * d - 2:3 * d) = r%id(:, j)
       r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
     end do
-    call par_exchange_counts(count, got)
-    call par_exchange(r%isend, 3 * count, r%irecv, 3 * got)
-    call par_exchange(r%rsend, nv * count, r%rrecv, nv * got)
+    call par_exchange_counts(count, got, traffic)
+    call par_exchange(r%isend, 3 * count, r%irecv, 3 * got, traffic)
+    call par_exchange(r%rsend, nv * count, r%rrecv, nv * got, traffic)
     nr = sum(got)
     r%n = nr
     if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(nv, 64))
