@@ -63,7 +63,7 @@ module contact_enforce
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
-  use parallel_env, only: par_sum_array, par_max, par_rank, par_size
+  use parallel_env, only: par_sum_array, par_max, par_rank, par_size, par_allgather
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
@@ -435,21 +435,28 @@ contains
 
     if (ct%npair == 0) return
     t0 = wall_clock()
-    speed = 0.0_rk
-    do i = 1, ct%nown
-      speed = max(speed, norm2(v_old(:, ct%own_local(i))))
-    end do
-    ct%speed = par_max(speed, ct%traffic)
-    call lap(ct%wait_seconds)
+    ! The largest speed at t^n: once per step (both stages have the same v^n).
+    if (ct%speed_cycle /= cycle) then
+      speed = 0.0_rk
+      do i = 1, ct%nown
+        speed = max(speed, norm2(v_old(:, ct%own_local(i))))
+      end do
+      ct%speed = par_max(speed, ct%traffic)
+      ct%speed_cycle = cycle
+      call lap(ct%wait_seconds)
+    end if
     rebuilt = cycle >= ct%next_search .or. .not. allocated(ct%all_of)
     ! After a restart the first search only rebuilds what the dump does not
     ! hold: the uninterrupted run's schedule (and so its audits) goes on.
     if (rebuilt .and. cycle >= ct%resumed_search) ct%audit_due = .true.
     if (rebuilt) call contact_rebuild(ct, x_old, dt, cycle, sel)
+    if (rebuilt) ct%gathered_cycle = -1
     if (rebuilt .and. cycle < ct%resumed_search) ct%next_search = ct%resumed_search
     ct%resumed_search = -1
     call lap(ct%search_seconds)
-    call gather_nodes(ct, x_old, v_old, force, .true.)
+    ! x^n and v^n of the local set once per step, the forces every stage.
+    call gather_nodes(ct, x_old, v_old, force, ct%gathered_cycle /= cycle)
+    ct%gathered_cycle = cycle
     call lap(ct%migrate_seconds)
     if (rebuilt) then
       call contact_localize(ct, sel)
@@ -466,7 +473,7 @@ contains
       ! start from the force with the deck interfaces' contact forces in it:
       ! where the first pass matched the two sides nothing is left to do,
       ! and master nodes that cross the slave surface are caught.
-      call gather_nodes(ct, x_old, v_old, force, .true.)
+      call gather_nodes(ct, x_old, v_old, force, .false.)
       call lap(ct%migrate_seconds)
       call stage_round(ct%ndeck + 1, ct%npair)
     end if
@@ -516,7 +523,8 @@ contains
         do k = first, last
           associate(p => ct%pairs(k))
             if (r > p%method%rounds()) cycle
-            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown, ct%traffic)
+            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown, ct%recv_count > 0, &
+                ct%send_count > 0, ct%traffic)
             allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
             call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
                 fck(:, :, k), has(:, k))
@@ -553,21 +561,37 @@ contains
   end subroutine contact_apply
 
   !> Diagnostics of the step from every part's sums; released nodes from the
-  !> owners. Collective.
+  !> owners. One collective for all interfaces: every rank's sums and
+  !> largest penetration gathered, then added in rank order (on one and two
+  !> ranks bitwise the sums of an all-reduce) and the maximum taken.
+  !> Collective.
   subroutine reduce_diagnostics(ct, has)
     type(contact_t), intent(inout) :: ct
     logical, intent(in) :: has(:, :)
-    real(rk) :: sums(8), pen_max
-    integer :: k
+    !> per interface: active, force, pen_sq, weight, dmom(3), released, pen_max
+    integer, parameter :: W = 9
+    real(rk) :: mine(W * ct%npair), sums(W), pen_max
+    real(rk), allocatable :: all(:, :)
+    integer :: k, r
     do k = 1, ct%npair
       associate(p => ct%pairs(k), s => ct%pairs(k)%sums)
-        sums = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
-            real(count(p%was_active .and. .not. has(:, k)), rk)]
+        mine(W * (k - 1) + 1:W * k) = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
+            real(count(p%was_active .and. .not. has(:, k)), rk), s%pen_max]
         p%was_active = has(:, k)
-        call par_sum_array(sums, ct%traffic)
+      end associate
+    end do
+    allocate(all(W * ct%npair, par_size()))
+    call par_allgather(mine, all, ct%traffic)
+    do k = 1, ct%npair
+      associate(p => ct%pairs(k))
+        sums = all(W * (k - 1) + 1:W * k, 1)
+        do r = 2, par_size()
+          sums(1:W - 1) = sums(1:W - 1) + all(W * (k - 1) + 1:W * k - 1, r)
+          sums(W) = max(sums(W), all(W * k, r))
+        end do
+        pen_max = sums(W)
         p%pen_sq = sums(3)
         p%pen_weight = sums(4)
-        pen_max = par_max(s%pen_max, ct%traffic)
         ! pen_rms: over the method's weights (DLM: overlap area, DAM: slaves).
         p%diag(1:8) = [sums(1), sums(2), pen_max, p%method%pen_rms(sums(3), sums(4)), &
             sums(8), sums(5:7)]

@@ -10,7 +10,7 @@
 module contact_records
   use core_kinds, only: rk, i8
   use parallel_env, only: par_size, traffic_t
-  use parallel_exchange, only: par_exchange, par_exchange_counts
+  use parallel_exchange, only: par_exchange_partners
   implicit none
   private
   public :: take, add_record, send_records, sum_records
@@ -22,9 +22,9 @@ module contact_records
     integer :: nv = 3
     integer(i8), allocatable :: id(:, :) !< (3, capacity)
     real(rk), allocatable :: val(:, :) !< (nv, capacity)
-    ! Buffers of the exchange, kept from stage to stage.
+    ! Buffers of the exchange, kept from stage to stage: per record its
+    ! three ids, then its nv values bit for bit (transfer).
     integer(i8), allocatable :: isend(:), irecv(:)
-    real(rk), allocatable :: rsend(:), rrecv(:)
     integer, allocatable :: node(:) !< (capacity) owned index of a received record
     integer, allocatable :: start(:), place(:) !< (nown + 1) buckets of the owned nodes
   end type records_t
@@ -41,8 +41,6 @@ contains
     if (allocated(from%val)) call move_alloc(from%val, to%val)
     if (allocated(from%isend)) call move_alloc(from%isend, to%isend)
     if (allocated(from%irecv)) call move_alloc(from%irecv, to%irecv)
-    if (allocated(from%rsend)) call move_alloc(from%rsend, to%rsend)
-    if (allocated(from%rrecv)) call move_alloc(from%rrecv, to%rrecv)
     if (allocated(from%node)) call move_alloc(from%node, to%node)
     if (allocated(from%start)) call move_alloc(from%start, to%start)
     if (allocated(from%place)) call move_alloc(from%place, to%place)
@@ -75,19 +73,26 @@ contains
   !> replaced by the owned index. Each part sends its records in (interface,
   !> key) order, so a node's records arrive as one ascending run per part:
   !> a stable bucket sort by node and an insertion sort of each (short,
-  !> nearly sorted) bucket put them in order in linear time.
-  subroutine send_records(r, owner, own_of, nown, traffic)
+  !> nearly sorted) bucket put them in order in linear time. One message per
+  !> partner of the migration plan, ids and values together (values bit for
+  !> bit), its length the count: no exchange of counts.
+  subroutine send_records(r, owner, own_of, nown, to, from, traffic)
     type(records_t), intent(inout) :: r
     integer, intent(in) :: owner(:) !< (nall) mesh-owner rank of each contact node
     integer, intent(in) :: own_of(:) !< (nall) owned index on this rank, 0 if not owned
     integer, intent(in) :: nown !< owned contact nodes of this rank
+    !> (nranks) the owners of this part's local set, which get a message
+    logical, intent(in) :: to(:)
+    !> (nranks) the parts holding owned nodes of this rank, which send one
+    logical, intent(in) :: from(:)
     type(traffic_t), intent(inout) :: traffic
     integer, allocatable :: count(:), got(:), fill(:)
     integer(i8) :: id(3)
     real(rk) :: val(r%nv)
-    integer :: j, o, nranks, nr, d, nv, i, e
+    integer :: j, o, nranks, nr, d, nv, i, e, w
     nranks = par_size()
     nv = r%nv
+    w = 3 + nv
     allocate(count(nranks), got(nranks), fill(nranks))
     count = 0
     do j = 1, r%n
@@ -98,18 +103,16 @@ contains
     do o = 2, nranks
       fill(o) = fill(o - 1) + count(o - 1)
     end do
-    call reserve_i8(r%isend, 3 * r%n)
-    call reserve_real(r%rsend, nv * r%n)
+    call reserve_i8(r%isend, w * r%n)
     do j = 1, r%n
       o = owner(r%id(1, j)) + 1
       fill(o) = fill(o) + 1
-      d = fill(o)
-      r%isend(3 * d - 2:3 * d) = r%id(:, j)
-      r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
+      d = w * (fill(o) - 1)
+      r%isend(d + 1:d + 3) = r%id(:, j)
+      r%isend(d + 4:d + w) = transfer(r%val(:, j), 1_i8, nv)
     end do
-    call par_exchange_counts(count, got, traffic)
-    call par_exchange(r%isend, 3 * count, r%irecv, 3 * got, traffic)
-    call par_exchange(r%rsend, nv * count, r%rrecv, nv * got, traffic)
+    call par_exchange_partners(r%isend, w * count, to, r%irecv, got, from, traffic)
+    got = got / w
     nr = sum(got)
     r%n = nr
     if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(nv, 64))
@@ -133,7 +136,7 @@ contains
     if (.not. allocated(r%node)) allocate(r%node(max(2 * nr, 64)))
     r%start = 0
     do j = 1, nr
-      r%node(j) = own_of(r%irecv(3 * j - 2))
+      r%node(j) = own_of(r%irecv(w * (j - 1) + 1))
       r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
     end do
     r%start(1) = 1
@@ -144,8 +147,8 @@ contains
     do j = 1, nr
       d = r%place(r%node(j))
       r%place(r%node(j)) = d + 1
-      r%id(:, d) = [int(r%node(j), i8), r%irecv(3 * j - 1:3 * j)]
-      r%val(:, d) = r%rrecv(nv * (j - 1) + 1:nv * j)
+      r%id(:, d) = [int(r%node(j), i8), r%irecv(w * (j - 1) + 2:w * (j - 1) + 3)]
+      r%val(:, d) = transfer(r%irecv(w * (j - 1) + 4:w * j), 1.0_rk, nv)
     end do
     ! Within a node: (interface, key) ascending.
     do i = 1, nown
@@ -175,17 +178,6 @@ contains
     end if
     allocate(a(max(2 * n, 64)))
   end subroutine reserve_i8
-
-  !> Make a buffer hold at least n elements (grown by doubling, kept).
-  subroutine reserve_real(a, n)
-    real(rk), allocatable, intent(inout) :: a(:)
-    integer, intent(in) :: n
-    if (allocated(a)) then
-      if (size(a) >= n) return
-      deallocate(a)
-    end if
-    allocate(a(max(2 * n, 64)))
-  end subroutine reserve_real
 
   !> Sums of 3-vector records per (owned node, interface), in key order.
   subroutine sum_records(r, fck, has)
