@@ -38,7 +38,7 @@ module contact_parts
   use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
   use contact_state, only: contact_t, selection_t, int_list_t, PAIR_SEGMENTS, capture_of, &
       key_node, geometry_free
-  use parallel_env, only: par_max, par_size, par_sum
+  use parallel_env, only: par_max, par_size, par_allgather
   use parallel_exchange, only: par_exchange, par_exchange_counts
   use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of, rcb_parts_of_box
   implicit none
@@ -132,9 +132,11 @@ contains
     logical, allocatable :: in_set(:)
     type(rcb_t) :: rcb
     integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j, pass, mine, total
+    integer, allocatable :: found(:, :)
     real(rk) :: balance
 
     nranks = par_size()
+    allocate(found(1, nranks))
     ct%rebuilds = ct%rebuilds + 1
     every_min = huge(1)
     do k = 1, ct%npair
@@ -161,15 +163,16 @@ contains
       if (allocated(sel)) deallocate(sel)
       allocate(sel(ct%npair))
       call search_on_parts(ct, x_old, rcb, sel)
-      call count_keys(ct, sel)
       mine = 0
       do k = 1, ct%npair
         mine = mine + size(sel(k)%pairs, 2)
       end do
-      total = par_sum(mine, ct%traffic)
+      ! Every part's pairs (one gather: their sum and their largest).
+      call par_allgather([mine], found, ct%traffic)
+      total = sum(found)
+      call count_keys(ct, sel, total)
       balance = 1.0_rk
-      if (total > 0) balance = real(par_max(mine, ct%traffic), rk) * real(nranks, rk) / &
-          real(total, rk)
+      if (total > 0) balance = real(maxval(found), rk) * real(nranks, rk) / real(total, rk)
       ! (A few pairs cost little however they fall.)
       if (pass == 2 .or. .not. balance > REBALANCE .or. total < 16 * nranks) exit
       ct%recuts = ct%recuts + 1
@@ -465,9 +468,10 @@ contains
   !> that can key pairs (the weights of the first search). Pairs alone, as a
   !> base weight for every key node would spread the parts over the whole
   !> surfaces and leave a small contact patch on one part (the tubes).
-  subroutine count_keys(ct, sel)
+  subroutine count_keys(ct, sel, total)
     type(contact_t), intent(inout) :: ct
     type(selection_t), intent(in) :: sel(:)
+    integer, intent(in) :: total !< pairs found by all parts
     integer(i8), allocatable :: send(:), recv(:)
     integer, allocatable :: count(:), recv_count(:), fill(:)
     integer :: k, m, c, pass, nranks, r, j
@@ -504,8 +508,7 @@ contains
       ct%key_weight(m) = ct%key_weight(m) + 1_i8
     end do
     ! No pairs anywhere: the key nodes, as before the first search.
-    if (par_sum(sum(recv_count), ct%traffic) == 0) ct%key_weight = merge(1_i8, 0_i8, &
-        ct%key_capable)
+    if (total == 0) ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
   end subroutine count_keys
 
 

@@ -22,9 +22,11 @@ module contact_records
     integer :: nv = 3
     integer(i8), allocatable :: id(:, :) !< (3, capacity)
     real(rk), allocatable :: val(:, :) !< (nv, capacity)
-    ! Buffers of the exchange, kept from stage to stage: per record its
-    ! three ids, then its nv values bit for bit (transfer).
+    ! Buffers of the exchange, kept from stage to stage. A message holds
+    ! the three ids of its records, then their values bit for bit (one
+    ! transfer per message).
     integer(i8), allocatable :: isend(:), irecv(:)
+    real(rk), allocatable :: rsend(:), rrecv(:)
     integer, allocatable :: node(:) !< (capacity) owned index of a received record
     integer, allocatable :: start(:), place(:) !< (nown + 1) buckets of the owned nodes
   end type records_t
@@ -41,6 +43,8 @@ contains
     if (allocated(from%val)) call move_alloc(from%val, to%val)
     if (allocated(from%isend)) call move_alloc(from%isend, to%isend)
     if (allocated(from%irecv)) call move_alloc(from%irecv, to%irecv)
+    if (allocated(from%rsend)) call move_alloc(from%rsend, to%rsend)
+    if (allocated(from%rrecv)) call move_alloc(from%rrecv, to%rrecv)
     if (allocated(from%node)) call move_alloc(from%node, to%node)
     if (allocated(from%start)) call move_alloc(from%start, to%start)
     if (allocated(from%place)) call move_alloc(from%place, to%place)
@@ -89,7 +93,7 @@ contains
     integer, allocatable :: count(:), got(:), fill(:)
     integer(i8) :: id(3)
     real(rk) :: val(r%nv)
-    integer :: j, o, nranks, nr, d, nv, i, e, w
+    integer :: j, o, nranks, nr, d, nv, i, e, w, at, n
     nranks = par_size()
     nv = r%nv
     w = 3 + nv
@@ -103,16 +107,41 @@ contains
     do o = 2, nranks
       fill(o) = fill(o - 1) + count(o - 1)
     end do
-    call reserve_i8(r%isend, w * r%n)
+    ! Ids and values by destination, then each destination's message: its
+    ! ids, then its values.
+    call reserve_i8(r%irecv, 3 * r%n)
+    call reserve_real(r%rsend, nv * r%n)
     do j = 1, r%n
       o = owner(r%id(1, j)) + 1
       fill(o) = fill(o) + 1
-      d = w * (fill(o) - 1)
-      r%isend(d + 1:d + 3) = r%id(:, j)
-      r%isend(d + 4:d + w) = transfer(r%val(:, j), 1_i8, nv)
+      d = fill(o)
+      r%irecv(3 * d - 2:3 * d) = r%id(:, j)
+      r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
+    end do
+    call reserve_i8(r%isend, w * r%n)
+    at = 0
+    do o = 1, nranks
+      n = count(o)
+      d = fill(o) - n
+      r%isend(at + 1:at + 3 * n) = r%irecv(3 * d + 1:3 * (d + n))
+      if (n > 0) r%isend(at + 3 * n + 1:at + w * n) = transfer(r%rsend(nv * d + 1:nv * (d + n)), &
+          1_i8, nv * n)
+      at = at + w * n
     end do
     call par_exchange_partners(r%isend, w * count, to, r%irecv, got, from, traffic)
     got = got / w
+    ! The values of each source's message apart, in the same order.
+    call reserve_real(r%rrecv, nv * sum(got))
+    at = 0
+    d = 0
+    do o = 1, nranks
+      n = got(o)
+      if (n > 0) r%rrecv(nv * d + 1:nv * (d + n)) = transfer(r%irecv(at + 3 * n + 1:at + w * n), &
+          1.0_rk, nv * n)
+      r%irecv(3 * d + 1:3 * (d + n)) = r%irecv(at + 1:at + 3 * n)
+      at = at + w * n
+      d = d + n
+    end do
     nr = sum(got)
     r%n = nr
     if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(nv, 64))
@@ -136,7 +165,7 @@ contains
     if (.not. allocated(r%node)) allocate(r%node(max(2 * nr, 64)))
     r%start = 0
     do j = 1, nr
-      r%node(j) = own_of(r%irecv(w * (j - 1) + 1))
+      r%node(j) = own_of(r%irecv(3 * j - 2))
       r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
     end do
     r%start(1) = 1
@@ -147,8 +176,8 @@ contains
     do j = 1, nr
       d = r%place(r%node(j))
       r%place(r%node(j)) = d + 1
-      r%id(:, d) = [int(r%node(j), i8), r%irecv(w * (j - 1) + 2:w * (j - 1) + 3)]
-      r%val(:, d) = transfer(r%irecv(w * (j - 1) + 4:w * j), 1.0_rk, nv)
+      r%id(:, d) = [int(r%node(j), i8), r%irecv(3 * j - 1:3 * j)]
+      r%val(:, d) = r%rrecv(nv * (j - 1) + 1:nv * j)
     end do
     ! Within a node: (interface, key) ascending.
     do i = 1, nown
@@ -178,6 +207,17 @@ contains
     end if
     allocate(a(max(2 * n, 64)))
   end subroutine reserve_i8
+
+  !> Make a buffer hold at least n elements (grown by doubling, kept).
+  subroutine reserve_real(a, n)
+    real(rk), allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n
+    if (allocated(a)) then
+      if (size(a) >= n) return
+      deallocate(a)
+    end if
+    allocate(a(max(2 * n, 64)))
+  end subroutine reserve_real
 
   !> Sums of 3-vector records per (owned node, interface), in key order.
   subroutine sum_records(r, fck, has)

@@ -285,11 +285,15 @@ contains
   end subroutine allgather_real
 
   !> all(:, r+1) = record of rank r.
-  subroutine allgather_int(record, all)
+  subroutine allgather_int(record, all, traffic)
     integer(ik), intent(in) :: record(:)
     integer(ik), intent(out) :: all(:, :)
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allgather(record, size(record), MPI_INTEGER, all, size(record), &
         MPI_INTEGER, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end subroutine allgather_int
 
   !> all(:, r+1) = record of rank r (64-bit integers: global ids).
