@@ -63,7 +63,7 @@ module contact_enforce
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
-  use parallel_env, only: par_sum_array, par_max, par_rank, par_size, par_allgather
+  use parallel_env, only: par_sum_array, par_max, par_max_array, par_rank, par_size
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
@@ -561,39 +561,28 @@ contains
   end subroutine contact_apply
 
   !> Diagnostics of the step from every part's sums; released nodes from the
-  !> owners. One collective for all interfaces: every rank's sums and
-  !> largest penetration gathered, then added in rank order (on one and two
-  !> ranks bitwise the sums of an all-reduce) and the maximum taken.
+  !> owners. The sums per interface as they always were (the MPI library's
+  !> order), the largest penetrations of all interfaces in one reduction.
   !> Collective.
   subroutine reduce_diagnostics(ct, has)
     type(contact_t), intent(inout) :: ct
     logical, intent(in) :: has(:, :)
-    !> per interface: active, force, pen_sq, weight, dmom(3), released, pen_max
-    integer, parameter :: W = 9
-    real(rk) :: mine(W * ct%npair), sums(W), pen_max
-    real(rk), allocatable :: all(:, :)
-    integer :: k, r
+    real(rk) :: sums(8), pen_max(ct%npair)
+    integer :: k
+    do k = 1, ct%npair
+      pen_max(k) = ct%pairs(k)%sums%pen_max
+    end do
+    call par_max_array(pen_max, ct%traffic)
     do k = 1, ct%npair
       associate(p => ct%pairs(k), s => ct%pairs(k)%sums)
-        mine(W * (k - 1) + 1:W * k) = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
-            real(count(p%was_active .and. .not. has(:, k)), rk), s%pen_max]
+        sums = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
+            real(count(p%was_active .and. .not. has(:, k)), rk)]
         p%was_active = has(:, k)
-      end associate
-    end do
-    allocate(all(W * ct%npair, par_size()))
-    call par_allgather(mine, all, ct%traffic)
-    do k = 1, ct%npair
-      associate(p => ct%pairs(k))
-        sums = all(W * (k - 1) + 1:W * k, 1)
-        do r = 2, par_size()
-          sums(1:W - 1) = sums(1:W - 1) + all(W * (k - 1) + 1:W * k - 1, r)
-          sums(W) = max(sums(W), all(W * k, r))
-        end do
-        pen_max = sums(W)
+        call par_sum_array(sums, ct%traffic)
         p%pen_sq = sums(3)
         p%pen_weight = sums(4)
         ! pen_rms: over the method's weights (DLM: overlap area, DAM: slaves).
-        p%diag(1:8) = [sums(1), sums(2), pen_max, p%method%pen_rms(sums(3), sums(4)), &
+        p%diag(1:8) = [sums(1), sums(2), pen_max(k), p%method%pen_rms(sums(3), sums(4)), &
             sums(8), sums(5:7)]
       end associate
     end do

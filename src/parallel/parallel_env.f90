@@ -9,7 +9,7 @@ module parallel_env
   private
   public :: par_init, par_finalize, par_abort
   public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle, par_io_info_handle
-  public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_allgather
+  public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_max_array, par_allgather
   public :: par_sum_exact, traffic_count
 
   !> Counters of one caller's communication (the contact's), for its run
@@ -195,6 +195,17 @@ contains
     if (present(traffic)) call traffic_count(traffic, t0)
     x = s
   end subroutine par_sum_array
+
+  !> In-place global maximum of each element of a small array.
+  subroutine par_max_array(x, traffic)
+    real(rk), intent(inout) :: x(:)
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: s(size(x)), t0
+    t0 = MPI_Wtime()
+    call MPI_Allreduce(x, s, size(x), MPI_DOUBLE_PRECISION, MPI_MAX, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
+    x = s
+  end subroutine par_max_array
 
   !> In-place global exact sums (core_exact_sum): every rank ends with the
   !> sums of all ranks' terms, bitwise the same whatever the rank count and
