@@ -63,7 +63,7 @@ module contact_enforce
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
-  use parallel_env, only: par_sum_array, par_max, par_rank, par_size
+  use parallel_env, only: par_sum_array, par_max, par_max_array, par_rank, par_size
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
@@ -440,21 +440,28 @@ contains
 
     if (ct%npair == 0) return
     t0 = wall_clock()
-    speed = 0.0_rk
-    do i = 1, ct%nown
-      speed = max(speed, norm2(v_old(:, ct%own_local(i))))
-    end do
-    ct%speed = par_max(speed)
-    call lap(ct%wait_seconds)
+    ! The largest speed at t^n: once per step (both stages have the same v^n).
+    if (ct%speed_cycle /= cycle) then
+      speed = 0.0_rk
+      do i = 1, ct%nown
+        speed = max(speed, norm2(v_old(:, ct%own_local(i))))
+      end do
+      ct%speed = par_max(speed, ct%traffic)
+      ct%speed_cycle = cycle
+      call lap(ct%wait_seconds)
+    end if
     rebuilt = cycle >= ct%next_search .or. .not. allocated(ct%all_of)
     ! After a restart the first search only rebuilds what the dump does not
     ! hold: the uninterrupted run's schedule (and so its audits) goes on.
     if (rebuilt .and. cycle >= ct%resumed_search) ct%audit_due = .true.
     if (rebuilt) call contact_rebuild(ct, x_old, dt, cycle, sel)
+    if (rebuilt) ct%gathered_cycle = -1
     if (rebuilt .and. cycle < ct%resumed_search) ct%next_search = ct%resumed_search
     ct%resumed_search = -1
     call lap(ct%search_seconds)
-    call gather_nodes(ct, x_old, v_old, force)
+    ! x^n and v^n of the local set once per step, the forces every stage.
+    call gather_nodes(ct, x_old, v_old, force, ct%gathered_cycle /= cycle)
+    ct%gathered_cycle = cycle
     call lap(ct%migrate_seconds)
     if (rebuilt) then
       call contact_localize(ct, sel)
@@ -471,7 +478,7 @@ contains
       ! start from the force with the deck interfaces' contact forces in it:
       ! where the first pass matched the two sides nothing is left to do,
       ! and master nodes that cross the slave surface are caught.
-      call gather_nodes(ct, x_old, v_old, force)
+      call gather_nodes(ct, x_old, v_old, force, .false.)
       call lap(ct%migrate_seconds)
       call stage_round(ct%ndeck + 1, ct%npair)
     end if
@@ -484,6 +491,7 @@ contains
       end do
     end if
     if (final) call reduce_diagnostics(ct, has)
+    if (final) ct%cycles = ct%cycles + 1
     call lap(ct%migrate_seconds)
 
   contains
@@ -520,7 +528,8 @@ contains
         do k = first, last
           associate(p => ct%pairs(k))
             if (r > p%method%rounds()) cycle
-            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown)
+            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown, ct%recv_count > 0, &
+                ct%send_count > 0, ct%traffic)
             allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
             call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
                 fck(:, :, k), has(:, k))
@@ -557,23 +566,28 @@ contains
   end subroutine contact_apply
 
   !> Diagnostics of the step from every part's sums; released nodes from the
-  !> owners. Collective.
+  !> owners. The sums per interface as they always were (the MPI library's
+  !> order), the largest penetrations of all interfaces in one reduction.
+  !> Collective.
   subroutine reduce_diagnostics(ct, has)
     type(contact_t), intent(inout) :: ct
     logical, intent(in) :: has(:, :)
-    real(rk) :: sums(8), pen_max
+    real(rk) :: sums(8), pen_max(ct%npair)
     integer :: k
+    do k = 1, ct%npair
+      pen_max(k) = ct%pairs(k)%sums%pen_max
+    end do
+    call par_max_array(pen_max, ct%traffic)
     do k = 1, ct%npair
       associate(p => ct%pairs(k), s => ct%pairs(k)%sums)
         sums = [s%active, s%force, s%pen_sq, s%weight, s%dmom, &
             real(count(p%was_active .and. .not. has(:, k)), rk)]
         p%was_active = has(:, k)
-        call par_sum_array(sums)
+        call par_sum_array(sums, ct%traffic)
         p%pen_sq = sums(3)
         p%pen_weight = sums(4)
-        pen_max = par_max(s%pen_max)
         ! pen_rms: over the method's weights (DLM: overlap area, DAM: slaves).
-        p%diag(1:8) = [sums(1), sums(2), pen_max, p%method%pen_rms(sums(3), sums(4)), &
+        p%diag(1:8) = [sums(1), sums(2), pen_max(k), p%method%pen_rms(sums(3), sums(4)), &
             sums(8), sums(5:7)]
       end associate
     end do
@@ -612,8 +626,16 @@ contains
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
     real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit
+    real(rk) :: bytes, messages, exchanges, collectives, comm, per
     integer :: largest, smallest, k
     if (ct%npair == 0) return
+    ! The traffic per cycle, each figure its largest rank's.
+    per = 1.0_rk / real(max(ct%cycles, 1_i8), rk)
+    bytes = par_max(real(ct%traffic%bytes, rk)) * per
+    messages = par_max(real(ct%traffic%messages, rk)) * per
+    exchanges = par_max(real(ct%traffic%exchanges, rk)) * per
+    collectives = par_max(real(ct%traffic%collectives, rk)) * per
+    comm = par_max(ct%traffic%wait_seconds)
     search = par_max(ct%search_seconds)
     enforce = par_max(ct%enforce_seconds)
     migrate = par_max(ct%migrate_seconds)
@@ -646,9 +668,18 @@ contains
     write(output_unit, '(a,f10.3,a,i0,a,f6.1,a)') 'impact3d: contact audit ', audit, ' s (', &
         ct%audits, ' audits, ', 100.0_rk * audit / max(loop, 1.0e-9_rk), &
         '% of the loop; largest over the ranks, not in the contact times above)'
-    if (par_size() > 1) write(output_unit, '(a,f10.3,a)') 'impact3d: contact entry wait ', &
-        wait, ' s (the other ranks'' hydro: load imbalance; largest over the ranks, not in the '// &
-        'contact times)'
+    if (par_size() > 1) then
+      write(output_unit, '(a,f10.3,a)') 'impact3d: contact entry wait ', wait, &
+          ' s (the other ranks'' hydro: load imbalance; largest over the ranks, not in the '// &
+          'contact times)'
+      write(output_unit, '(a,f0.1,a,f0.1,a,f0.1,a,f0.1,a,f0.1,a)') &
+          'impact3d: contact exchange per cycle, largest rank: ', bytes / 1.0e3_rk, ' kB in ', &
+          messages, ' messages; ', exchanges + collectives, ' synchronisations (', exchanges, &
+          ' point-to-point exchanges, ', collectives, ' collectives)'
+      write(output_unit, '(a,f10.3,a)') 'impact3d: contact communication calls ', comm, &
+          ' s (waiting for the other ranks and transfer; largest over the ranks, in the '// &
+          'contact times)'
+    end if
     write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'impact3d: contact local sets ', smallest, &
         ' to ', largest, ' nodes per rank of ', ct%nall, ' contact nodes; ', ct%rebuilds, &
         ' global searches'

@@ -38,7 +38,7 @@ module contact_parts
   use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
   use contact_state, only: contact_t, selection_t, int_list_t, PAIR_SEGMENTS, capture_of, &
       key_node, geometry_free
-  use parallel_env, only: par_max, par_size, par_sum
+  use parallel_env, only: par_max, par_size, par_allgather
   use parallel_exchange, only: par_exchange, par_exchange_counts
   use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of, rcb_parts_of_box
   implicit none
@@ -132,9 +132,11 @@ contains
     logical, allocatable :: in_set(:)
     type(rcb_t) :: rcb
     integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j, pass, mine, total
+    integer, allocatable :: found(:, :)
     real(rk) :: balance
 
     nranks = par_size()
+    allocate(found(1, nranks))
     ct%rebuilds = ct%rebuilds + 1
     every_min = huge(1)
     do k = 1, ct%npair
@@ -157,17 +159,20 @@ contains
     do pass = 1, 2
       call rcb_build(x_old(:, ct%own_local), ct%key_weight, ct%all_gid(ct%own_contact), &
           nranks, rcb)
+      if (nranks > 1) ct%traffic%collectives = ct%traffic%collectives + rcb%reductions
       if (allocated(sel)) deallocate(sel)
       allocate(sel(ct%npair))
       call search_on_parts(ct, x_old, rcb, sel)
-      call count_keys(ct, sel)
       mine = 0
       do k = 1, ct%npair
         mine = mine + size(sel(k)%pairs, 2)
       end do
-      total = par_sum(mine)
+      ! Every part's pairs (one gather: their sum and their largest).
+      call par_allgather([mine], found, ct%traffic)
+      total = sum(found)
+      call count_keys(ct, sel, total)
       balance = 1.0_rk
-      if (total > 0) balance = real(par_max(mine), rk) * real(nranks, rk) / real(total, rk)
+      if (total > 0) balance = real(maxval(found), rk) * real(nranks, rk) / real(total, rk)
       ! (A few pairs cost little however they fall.)
       if (pass == 2 .or. .not. balance > REBALANCE .or. total < 16 * nranks) exit
       ct%recuts = ct%recuts + 1
@@ -244,8 +249,8 @@ contains
       ct%recv_local(fill(r)) = i
       request(fill(r)) = int(ct%all_of(i), i8)
     end do
-    call par_exchange_counts(ct%recv_count, ct%send_count)
-    call par_exchange(request, ct%recv_count, wanted, ct%send_count)
+    call par_exchange_counts(ct%recv_count, ct%send_count, ct%traffic)
+    call par_exchange(request, ct%recv_count, wanted, ct%send_count, ct%traffic)
     if (allocated(ct%send_own)) deallocate(ct%send_own)
     ! (The receive buffer may be longer than what arrived.)
     allocate(ct%send_own(sum(ct%send_count)))
@@ -334,7 +339,7 @@ contains
           end do
         end if
       end associate
-      ext(k) = par_max(ext(k))
+      ext(k) = par_max(ext(k), ct%traffic)
     end do
 
     ! Two passes over the items: count per part, then fill.
@@ -387,8 +392,8 @@ contains
         end associate
       end do
     end do
-    call par_exchange_counts(REC * count, recv_count)
-    call par_exchange(send, REC * count, recv, recv_count)
+    call par_exchange_counts(REC * count, recv_count, ct%traffic)
+    call par_exchange(send, REC * count, recv, recv_count, ct%traffic)
 
     ! Keys and candidates of each interface, ascending; their positions.
     allocate(nlist(2, ct%npair), keys(ct%npair), cands(ct%npair))
@@ -463,9 +468,10 @@ contains
   !> that can key pairs (the weights of the first search). Pairs alone, as a
   !> base weight for every key node would spread the parts over the whole
   !> surfaces and leave a small contact patch on one part (the tubes).
-  subroutine count_keys(ct, sel)
+  subroutine count_keys(ct, sel, total)
     type(contact_t), intent(inout) :: ct
     type(selection_t), intent(in) :: sel(:)
+    integer, intent(in) :: total !< pairs found by all parts
     integer(i8), allocatable :: send(:), recv(:)
     integer, allocatable :: count(:), recv_count(:), fill(:)
     integer :: k, m, c, pass, nranks, r, j
@@ -494,43 +500,51 @@ contains
         end do
       end do
     end do
-    call par_exchange_counts(count, recv_count)
-    call par_exchange(send, count, recv, recv_count)
+    call par_exchange_counts(count, recv_count, ct%traffic)
+    call par_exchange(send, count, recv, recv_count, ct%traffic)
     ct%key_weight = 0
     do j = 1, sum(recv_count)
       m = ct%own_of(recv(j))
       ct%key_weight(m) = ct%key_weight(m) + 1_i8
     end do
     ! No pairs anywhere: the key nodes, as before the first search.
-    if (par_sum(sum(recv_count)) == 0) ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
+    if (total == 0) ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
   end subroutine count_keys
 
 
-  !> x^n, v^n and f of the local set from the mesh owners.
-  subroutine gather_nodes(ct, x_old, v_old, force)
+  !> x^n, v^n and f of the local set from the mesh owners; with full
+  !> false only f (the stage's forces: x^n and v^n arrived in an earlier
+  !> stage of the same step and are unchanged).
+  subroutine gather_nodes(ct, x_old, v_old, force, full)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x_old(:, :), v_old(:, :), force(:, :)
+    logical, intent(in) :: full
     real(rk), allocatable :: send(:), recv(:)
-    integer :: j, l, i
-    allocate(send(9 * size(ct%send_own)))
+    integer :: j, l, i, w
+    w = merge(9, 3, full)
+    allocate(send(w * size(ct%send_own)))
     do j = 1, size(ct%send_own)
       l = ct%own_local(ct%send_own(j))
-      send(9 * j - 8:9 * j - 6) = x_old(:, l)
-      send(9 * j - 5:9 * j - 3) = v_old(:, l)
-      send(9 * j - 2:9 * j) = force(:, l)
+      if (full) then
+        send(9 * j - 8:9 * j - 6) = x_old(:, l)
+        send(9 * j - 5:9 * j - 3) = v_old(:, l)
+      end if
+      send(w * j - 2:w * j) = force(:, l)
     end do
-    call par_exchange(send, 9 * ct%send_count, recv, 9 * ct%recv_count)
+    call par_exchange(send, w * ct%send_count, recv, w * ct%recv_count, ct%traffic)
     do j = 1, ct%ncn
       i = ct%recv_local(j)
-      ct%x(:, i) = recv(9 * j - 8:9 * j - 6)
-      ct%v(:, i) = recv(9 * j - 5:9 * j - 3)
-      ct%f(:, i) = recv(9 * j - 2:9 * j)
+      if (full) then
+        ct%x(:, i) = recv(9 * j - 8:9 * j - 6)
+        ct%v(:, i) = recv(9 * j - 5:9 * j - 3)
+      end if
+      ct%f(:, i) = recv(w * j - 2:w * j)
     end do
   end subroutine gather_nodes
 
   !> Owned values (nc, nown, n) to the local sets (nc, ncn, n): n interfaces.
   subroutine scatter_nodes(ct, owned, local)
-    type(contact_t), intent(in) :: ct
+    type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: owned(:, :, :)
     real(rk), allocatable, intent(out) :: local(:, :, :)
     real(rk), allocatable :: send(:), recv(:)
@@ -543,7 +557,7 @@ contains
         send(nv * (j - 1) + nc * (k - 1) + 1:nv * (j - 1) + nc * k) = owned(:, ct%send_own(j), k)
       end do
     end do
-    call par_exchange(send, nv * ct%send_count, recv, nv * ct%recv_count)
+    call par_exchange(send, nv * ct%send_count, recv, nv * ct%recv_count, ct%traffic)
     do j = 1, ct%ncn
       i = ct%recv_local(j)
       do k = 1, size(owned, 3)

@@ -9,8 +9,8 @@
 !> (take moves them in and out of the caller's long-lived holder).
 module contact_records
   use core_kinds, only: rk, i8
-  use parallel_env, only: par_size
-  use parallel_exchange, only: par_exchange, par_exchange_counts
+  use parallel_env, only: par_size, traffic_t
+  use parallel_exchange, only: par_exchange_partners
   implicit none
   private
   public :: take, add_record, send_records, sum_records
@@ -22,7 +22,9 @@ module contact_records
     integer :: nv = 3
     integer(i8), allocatable :: id(:, :) !< (3, capacity)
     real(rk), allocatable :: val(:, :) !< (nv, capacity)
-    ! Buffers of the exchange, kept from stage to stage.
+    ! Buffers of the exchange, kept from stage to stage. A message holds
+    ! the three ids of its records, then their values bit for bit (one
+    ! transfer per message).
     integer(i8), allocatable :: isend(:), irecv(:)
     real(rk), allocatable :: rsend(:), rrecv(:)
     integer, allocatable :: node(:) !< (capacity) owned index of a received record
@@ -75,18 +77,26 @@ contains
   !> replaced by the owned index. Each part sends its records in (interface,
   !> key) order, so a node's records arrive as one ascending run per part:
   !> a stable bucket sort by node and an insertion sort of each (short,
-  !> nearly sorted) bucket put them in order in linear time.
-  subroutine send_records(r, owner, own_of, nown)
+  !> nearly sorted) bucket put them in order in linear time. One message per
+  !> partner of the migration plan, ids and values together (values bit for
+  !> bit), its length the count: no exchange of counts.
+  subroutine send_records(r, owner, own_of, nown, to, from, traffic)
     type(records_t), intent(inout) :: r
     integer, intent(in) :: owner(:) !< (nall) mesh-owner rank of each contact node
     integer, intent(in) :: own_of(:) !< (nall) owned index on this rank, 0 if not owned
     integer, intent(in) :: nown !< owned contact nodes of this rank
+    !> (nranks) the owners of this part's local set, which get a message
+    logical, intent(in) :: to(:)
+    !> (nranks) the parts holding owned nodes of this rank, which send one
+    logical, intent(in) :: from(:)
+    type(traffic_t), intent(inout) :: traffic
     integer, allocatable :: count(:), got(:), fill(:)
     integer(i8) :: id(3)
     real(rk) :: val(r%nv)
-    integer :: j, o, nranks, nr, d, nv, i, e
+    integer :: j, o, nranks, nr, d, nv, i, e, w, at, n
     nranks = par_size()
     nv = r%nv
+    w = 3 + nv
     allocate(count(nranks), got(nranks), fill(nranks))
     count = 0
     do j = 1, r%n
@@ -97,18 +107,41 @@ contains
     do o = 2, nranks
       fill(o) = fill(o - 1) + count(o - 1)
     end do
-    call reserve_i8(r%isend, 3 * r%n)
+    ! Ids and values by destination, then each destination's message: its
+    ! ids, then its values.
+    call reserve_i8(r%irecv, 3 * r%n)
     call reserve_real(r%rsend, nv * r%n)
     do j = 1, r%n
       o = owner(r%id(1, j)) + 1
       fill(o) = fill(o) + 1
       d = fill(o)
-      r%isend(3 * d - 2:3 * d) = r%id(:, j)
+      r%irecv(3 * d - 2:3 * d) = r%id(:, j)
       r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
     end do
-    call par_exchange_counts(count, got)
-    call par_exchange(r%isend, 3 * count, r%irecv, 3 * got)
-    call par_exchange(r%rsend, nv * count, r%rrecv, nv * got)
+    call reserve_i8(r%isend, w * r%n)
+    at = 0
+    do o = 1, nranks
+      n = count(o)
+      d = fill(o) - n
+      r%isend(at + 1:at + 3 * n) = r%irecv(3 * d + 1:3 * (d + n))
+      if (n > 0) r%isend(at + 3 * n + 1:at + w * n) = transfer(r%rsend(nv * d + 1:nv * (d + n)), &
+          1_i8, nv * n)
+      at = at + w * n
+    end do
+    call par_exchange_partners(r%isend, w * count, to, r%irecv, got, from, traffic)
+    got = got / w
+    ! The values of each source's message apart, in the same order.
+    call reserve_real(r%rrecv, nv * sum(got))
+    at = 0
+    d = 0
+    do o = 1, nranks
+      n = got(o)
+      if (n > 0) r%rrecv(nv * d + 1:nv * (d + n)) = transfer(r%irecv(at + 3 * n + 1:at + w * n), &
+          1.0_rk, nv * n)
+      r%irecv(3 * d + 1:3 * (d + n)) = r%irecv(at + 1:at + 3 * n)
+      at = at + w * n
+      d = d + n
+    end do
     nr = sum(got)
     r%n = nr
     if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(nv, 64))

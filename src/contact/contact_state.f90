@@ -18,6 +18,7 @@ module contact_state
   use contact_geometry, only: segment_facets, triangle_unit_normal, triangle_vector_area, &
       quad_unit_normal, SEGMENT_FACET_COUNT
   use contact_records, only: records_t
+  use parallel_env, only: traffic_t
   implicit none
   private
   public :: capture_of, key_node, geometry_free, geometry_update, recovery_allowance, &
@@ -231,6 +232,9 @@ module contact_state
     !> restart's first stage searches anyway, without an audit before it)
     integer(i8) :: resumed_search = -1
     real(rk) :: speed = 0.0_rk !< largest contact node speed at t^n (all ranks)
+    !> the cycle whose t^n gave speed and the local set's x, v (the
+    !> corrector reuses them: only the forces are new)
+    integer(i8) :: speed_cycle = -1, gathered_cycle = -1
     !> The cycle's step over its stable step (< 1 when the step is cut short
     !> to land on a dump time or t_end): DLM's recovery speed is taken over
     !> the stable step, so a short landing step does not fling nodes apart.
@@ -245,6 +249,10 @@ module contact_state
     !> time in the first collective of each call: waiting for the slowest rank's
     !> hydro (load imbalance), kept out of the contact times
     real(rk) :: wait_seconds = 0.0_rk
+    !> the contact's communication (search, migration, diagnostics; not the
+    !> audit): bytes, messages, exchanges and collectives of this rank
+    type(traffic_t) :: traffic
+    integer(i8) :: cycles = 0 !< corrector stages run (cycles), for the per-cycle figures
     ! The audit (contact_monitor).
     real(rk), allocatable :: gap_own(:) !< (nown) smallest signed gap of each owned node
     logical :: audit_due = .true. !< a search ran since the last audit

@@ -9,8 +9,21 @@ module parallel_env
   private
   public :: par_init, par_finalize, par_abort
   public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle, par_io_info_handle
-  public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_allgather
-  public :: par_sum_exact
+  public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_max_array, par_allgather
+  public :: par_sum_exact, traffic_count
+
+  !> Counters of one caller's communication (the contact's), for its run
+  !> report: what this rank sent to other ranks and how often it had to
+  !> meet them. The helpers that take an optional traffic argument add to
+  !> it; nothing is counted on one rank.
+  type, public :: traffic_t
+    integer(i8) :: bytes = 0 !< payload bytes sent to other ranks, point to point
+    integer(i8) :: messages = 0 !< point-to-point messages sent to other ranks
+    integer(i8) :: collectives = 0 !< collective calls (reductions, all-to-alls, gathers)
+    !> point-to-point exchanges in which this rank sent or received a message
+    integer(i8) :: exchanges = 0
+    real(rk) :: wait_seconds = 0.0_rk !< time in the blocking calls: waiting and transfer
+  end type traffic_t
 
   type(MPI_Comm) :: comm_world !< the run's communicator (set once)
   type(MPI_Info) :: io_info = MPI_INFO_NULL !< MPI-IO hints of the dumps (set once)
@@ -161,19 +174,38 @@ contains
     call MPI_Bcast(x, len(x) * size(x), MPI_CHARACTER, 0, comm_world)
   end subroutine bcast_string_array
 
-  function sum_real(x) result(s)
+  function sum_real(x, traffic) result(s)
     real(rk), intent(in) :: x
     real(rk) :: s
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allreduce(x, s, 1, MPI_DOUBLE_PRECISION, MPI_SUM, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end function sum_real
 
   !> In-place global sum of a small array (diagnostics only).
-  subroutine par_sum_array(x)
+  subroutine par_sum_array(x, traffic)
     real(rk), intent(inout) :: x(:)
     real(rk) :: s(size(x))
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allreduce(x, s, size(x), MPI_DOUBLE_PRECISION, MPI_SUM, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
     x = s
   end subroutine par_sum_array
+
+  !> In-place global maximum of each element of a small array.
+  subroutine par_max_array(x, traffic)
+    real(rk), intent(inout) :: x(:)
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: s(size(x)), t0
+    t0 = MPI_Wtime()
+    call MPI_Allreduce(x, s, size(x), MPI_DOUBLE_PRECISION, MPI_MAX, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
+    x = s
+  end subroutine par_max_array
 
   !> In-place global exact sums (core_exact_sum): every rank ends with the
   !> sums of all ranks' terms, bitwise the same whatever the rank count and
@@ -186,10 +218,14 @@ contains
     call exact_unpack(total, sums)
   end subroutine par_sum_exact
 
-  function sum_int(x) result(s)
+  function sum_int(x, traffic) result(s)
     integer(ik), intent(in) :: x
     integer(ik) :: s
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allreduce(x, s, 1, MPI_INTEGER, MPI_SUM, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end function sum_int
 
   function sum_i8(x) result(s)
@@ -198,44 +234,77 @@ contains
     call MPI_Allreduce(x, s, 1, MPI_INTEGER8, MPI_SUM, comm_world)
   end function sum_i8
 
-  function min_real(x) result(s)
+  function min_real(x, traffic) result(s)
     real(rk), intent(in) :: x
     real(rk) :: s
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allreduce(x, s, 1, MPI_DOUBLE_PRECISION, MPI_MIN, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end function min_real
 
-  function min_int(x) result(s)
+  function min_int(x, traffic) result(s)
     integer(ik), intent(in) :: x
     integer(ik) :: s
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allreduce(x, s, 1, MPI_INTEGER, MPI_MIN, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end function min_int
 
-  function max_real(x) result(s)
+  function max_real(x, traffic) result(s)
     real(rk), intent(in) :: x
     real(rk) :: s
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allreduce(x, s, 1, MPI_DOUBLE_PRECISION, MPI_MAX, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end function max_real
 
-  function max_int(x) result(s)
+  function max_int(x, traffic) result(s)
     integer(ik), intent(in) :: x
     integer(ik) :: s
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allreduce(x, s, 1, MPI_INTEGER, MPI_MAX, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end function max_int
 
+  !> One collective call into traffic, with the time since t0.
+  subroutine traffic_count(traffic, t0)
+    type(traffic_t), intent(inout) :: traffic
+    real(rk), intent(in) :: t0 !< MPI_Wtime before the call
+    if (n_ranks == 1) return
+    traffic%collectives = traffic%collectives + 1
+    traffic%wait_seconds = traffic%wait_seconds + (MPI_Wtime() - t0)
+  end subroutine traffic_count
+
   !> all(:, r+1) = record of rank r.
-  subroutine allgather_real(record, all)
+  subroutine allgather_real(record, all, traffic)
     real(rk), intent(in) :: record(:)
     real(rk), intent(out) :: all(:, :)
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allgather(record, size(record), MPI_DOUBLE_PRECISION, all, size(record), &
         MPI_DOUBLE_PRECISION, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end subroutine allgather_real
 
   !> all(:, r+1) = record of rank r.
-  subroutine allgather_int(record, all)
+  subroutine allgather_int(record, all, traffic)
     integer(ik), intent(in) :: record(:)
     integer(ik), intent(out) :: all(:, :)
+    type(traffic_t), intent(inout), optional :: traffic
+    real(rk) :: t0
+    t0 = MPI_Wtime()
     call MPI_Allgather(record, size(record), MPI_INTEGER, all, size(record), &
         MPI_INTEGER, comm_world)
+    if (present(traffic)) call traffic_count(traffic, t0)
   end subroutine allgather_int
 
   !> all(:, r+1) = record of rank r (64-bit integers: global ids).

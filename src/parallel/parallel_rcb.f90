@@ -18,8 +18,11 @@
 !>   reaches T (with unit weights the left side weighs exactly T, since gids are
 !>   unique and so no two keys are equal). It is found by a search on the key of
 !>   the value, then on the gid among the points at that value. Every round
-!>   probes up to 15 keys per subproblem at once (four bisection steps) with
-!>   one reduction for all the subproblems of the level.
+!>   probes up to 255 keys per subproblem at once (eight bisection steps; fewer
+!>   on a level with many subproblems, down to four steps, so that a round's
+!>   histogram stays near 1024 bins) with one reduction for all the
+!>   subproblems of the level: a 64-bit key takes about eight rounds instead
+!>   of sixteen at four steps, and the cut does not depend on the probes.
 !> A point goes to the left part iff (x(d), gid) <= (cut value, cut gid). A
 !> subproblem without points is cut at the middle of its region, across the
 !> region's longest extent. Coordinates must not be NaN; gids must differ from
@@ -35,10 +38,9 @@ module parallel_rcb
 
   !> Number of coordinates of a point.
   integer, parameter :: NDIM = 3
-  !> Bisection steps done at once in one search round.
-  integer, parameter :: PROBE_DEPTH = 4
-  !> Keys probed per subproblem and round.
-  integer, parameter :: MAX_PROBES = 2**PROBE_DEPTH - 1
+  !> Bisection steps done at once in one search round: at most, at least,
+  !> and the histogram bins of a round aimed at (subproblems times probes).
+  integer, parameter :: PROBE_DEPTH = 8, MIN_PROBE_DEPTH = 4, ROUND_BINS = 1024
   !> Search phases of a subproblem.
   integer, parameter :: PHASE_DONE = 0, PHASE_VALUE = 1, PHASE_GID = 2
 
@@ -341,7 +343,7 @@ contains
     integer(i8) :: total, w, cumulative, below_next
     integer(i8), allocatable :: probe(:, :), histogram(:, :)
     integer, allocatable :: active(:)
-    integer :: nactive, m
+    integer :: nactive, m, depth
     logical :: by_count(size(item_np))
     real(rk) :: extent(NDIM), lo(NDIM), hi(NDIM)
 
@@ -388,7 +390,6 @@ contains
 
     ! Only the points inside their item's search interval are visited: "active"
     ! lists them, and below(k) is the (global) weight of item k's points under it.
-    allocate(probe(MAX_PROBES, nitem), histogram(MAX_PROBES, nitem))
     allocate(active(size(point_item)))
     nactive = 0
     do i = 1, size(point_item)
@@ -401,11 +402,17 @@ contains
     call keep_active()
     below = 0
     nprobe = 0
+    ! Steps per round: the same on every rank (from the open subproblems).
+    depth = PROBE_DEPTH
+    do while (depth > MIN_PROBE_DEPTH .and. count(item_np >= 2) * (2**depth - 1) > ROUND_BINS)
+      depth = depth - 1
+    end do
+    allocate(probe(2**depth - 1, nitem), histogram(2**depth - 1, nitem))
     do while (any(phase /= PHASE_DONE))
       do k = 1, nitem
         nprobe(k) = 0
-        if (phase(k) /= PHASE_DONE) call make_probes(search_lo(k), search_hi(k), probe(:, k), &
-            nprobe(k))
+        if (phase(k) /= PHASE_DONE) call make_probes(search_lo(k), search_hi(k), depth, &
+            probe(:, k), nprobe(k))
       end do
       ! histogram(j, k): weight of the active points of item k whose key (value, then gid)
       ! is in (probe j-1, probe j].
@@ -502,20 +509,21 @@ contains
 
   end subroutine find_cuts
 
-  !> The keys of up to four bisection steps on [lo, hi] (lo < hi), ascending.
-  pure subroutine make_probes(lo, hi, probe, nprobe)
+  !> The keys of up to depth bisection steps on [lo, hi] (lo < hi), ascending.
+  pure subroutine make_probes(lo, hi, depth, probe, nprobe)
     integer(i8), intent(in) :: lo, hi
-    integer(i8), intent(out) :: probe(:) !< (MAX_PROBES)
+    integer, intent(in) :: depth !< 1 .. PROBE_DEPTH
+    integer(i8), intent(out) :: probe(:) !< (2**depth - 1)
     integer, intent(out) :: nprobe
     integer(i8) :: a(2**PROBE_DEPTH), b(2**PROBE_DEPTH), a_next(2**PROBE_DEPTH)
     integer(i8) :: b_next(2**PROBE_DEPTH), middle
-    integer :: depth, m, ninterval, nnext
+    integer :: step, m, ninterval, nnext
 
     nprobe = 0
     ninterval = 1
     a(1) = lo
     b(1) = hi
-    do depth = 1, PROBE_DEPTH
+    do step = 1, depth
       nnext = 0
       do m = 1, ninterval
         if (a(m) >= b(m)) cycle
