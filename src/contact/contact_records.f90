@@ -107,41 +107,53 @@ contains
     do o = 2, nranks
       fill(o) = fill(o - 1) + count(o - 1)
     end do
-    ! Ids and values by destination, then each destination's message: its
-    ! ids, then its values.
-    call reserve_i8(r%irecv, 3 * r%n)
-    call reserve_real(r%rsend, nv * r%n)
-    do j = 1, r%n
-      o = owner(r%id(1, j)) + 1
-      fill(o) = fill(o) + 1
-      d = fill(o)
-      r%irecv(3 * d - 2:3 * d) = r%id(:, j)
-      r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
-    end do
-    call reserve_i8(r%isend, w * r%n)
-    at = 0
-    do o = 1, nranks
-      n = count(o)
-      d = fill(o) - n
-      r%isend(at + 1:at + 3 * n) = r%irecv(3 * d + 1:3 * (d + n))
-      if (n > 0) r%isend(at + 3 * n + 1:at + w * n) = transfer(r%rsend(nv * d + 1:nv * (d + n)), &
-          1_i8, nv * n)
-      at = at + w * n
-    end do
-    call par_exchange_partners(r%isend, w * count, to, r%irecv, got, from, traffic)
-    got = got / w
-    ! The values of each source's message apart, in the same order.
-    call reserve_real(r%rrecv, nv * sum(got))
-    at = 0
-    d = 0
-    do o = 1, nranks
-      n = got(o)
-      if (n > 0) r%rrecv(nv * d + 1:nv * (d + n)) = transfer(r%irecv(at + 3 * n + 1:at + w * n), &
-          1.0_rk, nv * n)
-      r%irecv(3 * d + 1:3 * (d + n)) = r%irecv(at + 1:at + 3 * n)
-      at = at + w * n
-      d = d + n
-    end do
+    if (nranks == 1) then
+      ! One rank: the records stay here, in the order they were made (what
+      ! the message would carry), with no packing.
+      call reserve_i8(r%irecv, 3 * r%n)
+      call reserve_real(r%rrecv, nv * r%n)
+      do j = 1, r%n
+        r%irecv(3 * j - 2:3 * j) = r%id(:, j)
+        r%rrecv(nv * (j - 1) + 1:nv * j) = r%val(:, j)
+      end do
+      got(1) = r%n
+    else
+      ! Ids and values by destination, then each destination's message: its
+      ! ids, then its values.
+      call reserve_i8(r%irecv, 3 * r%n)
+      call reserve_real(r%rsend, nv * r%n)
+      do j = 1, r%n
+        o = owner(r%id(1, j)) + 1
+        fill(o) = fill(o) + 1
+        d = fill(o)
+        r%irecv(3 * d - 2:3 * d) = r%id(:, j)
+        r%rsend(nv * (d - 1) + 1:nv * d) = r%val(:, j)
+      end do
+      call reserve_i8(r%isend, w * r%n)
+      at = 0
+      do o = 1, nranks
+        n = count(o)
+        d = fill(o) - n
+        r%isend(at + 1:at + 3 * n) = r%irecv(3 * d + 1:3 * (d + n))
+        if (n > 0) r%isend(at + 3 * n + 1:at + w * n) = transfer(r%rsend(nv * d + 1:nv * (d + n)), &
+            1_i8, nv * n)
+        at = at + w * n
+      end do
+      call par_exchange_partners(r%isend, w * count, to, r%irecv, got, from, traffic)
+      got = got / w
+      ! The values of each source's message apart, in the same order.
+      call reserve_real(r%rrecv, nv * sum(got))
+      at = 0
+      d = 0
+      do o = 1, nranks
+        n = got(o)
+        if (n > 0) r%rrecv(nv * d + 1:nv * (d + n)) = transfer(r%irecv(at + 3 * n + 1:at + w * n), &
+            1.0_rk, nv * n)
+        r%irecv(3 * d + 1:3 * (d + n)) = r%irecv(at + 1:at + 3 * n)
+        at = at + w * n
+        d = d + n
+      end do
+    end if
     nr = sum(got)
     r%n = nr
     if (.not. allocated(r%id)) allocate(r%id(3, 64), r%val(nv, 64))
