@@ -60,10 +60,11 @@ module contact_enforce
       initial_offsets_t, step_sums_t, contact_method_t, method_slot_t, DIAG_AUDIT
   use contact_audit, only: surface_sagitta, audit_reach
   use contact_factory, only: contact_method_new
+  use contact_impact, only: impact_step_limit, IMPACT_FLOOR
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes
-  use parallel_env, only: par_sum_array, par_max, par_max_array, par_rank, par_size
+  use parallel_env, only: par_sum_array, par_min, par_max, par_max_array, par_rank, par_size
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
@@ -418,11 +419,12 @@ contains
   !> Contact forces of the stage for the owned nodes: force(:, local) += fc.
   !> x_old, v_old: positions and velocities at t^n; force: hydro force of the
   !> stage. Collective.
-  subroutine contact_apply(ct, x_old, v_old, force, dt, cycle, final, wall_clock)
+  subroutine contact_apply(ct, x_old, v_old, force, stage_dt, cycle, final, wall_clock, &
+      cycle_dt)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x_old(:, :), v_old(:, :)
     real(rk), intent(inout) :: force(:, :)
-    real(rk), intent(in) :: dt
+    real(rk), intent(in) :: stage_dt !< the stage's step (the predictor: half the cycle's)
     integer(i8), intent(in) :: cycle !< the cycle being computed (for search scheduling)
     logical, intent(in) :: final !< the corrector (its forces give the diagnostics)
     interface
@@ -431,14 +433,18 @@ contains
         real(rk) :: t
       end function wall_clock
     end interface
+    !> the predictor: the cycle's step, which the impact limit may shorten
+    !> (contact_impact; collective), and the stage's with it
+    real(rk), intent(inout), optional :: cycle_dt
     real(rk), allocatable :: fck(:, :, :)
     logical, allocatable :: has(:, :)
-    real(rk) :: t0, speed
+    real(rk) :: t0, speed, dt, limit
     type(selection_t), allocatable :: sel(:)
     integer :: i, k
     logical :: rebuilt
 
     if (ct%npair == 0) return
+    dt = stage_dt
     t0 = wall_clock()
     ! The largest speed at t^n: once per step (both stages have the same v^n).
     if (ct%speed_cycle /= cycle) then
@@ -466,6 +472,19 @@ contains
     if (rebuilt) then
       call contact_localize(ct, sel)
       call lap(ct%search_seconds)
+    end if
+    if (present(cycle_dt)) then
+      ! The impact limit at t^n, over every rank's pairs. The recovery keeps
+      ! its speed over the stable step (landing).
+      limit = par_min(impact_step_limit(ct), ct%traffic)
+      if (limit < cycle_dt) then
+        limit = max(limit, IMPACT_FLOOR * cycle_dt)
+        dt = stage_dt * (limit / cycle_dt)
+        ct%landing = ct%landing * (limit / cycle_dt)
+        cycle_dt = limit
+        ct%impact_cycles = ct%impact_cycles + 1
+      end if
+      call lap(ct%enforce_seconds)
     end if
 
     allocate(fck(3, ct%nown, ct%npair), has(ct%nown, ct%npair))
@@ -680,6 +699,8 @@ contains
           ' s (waiting for the other ranks and transfer; largest over the ranks, in the '// &
           'contact times)'
     end if
+    write(output_unit, '(a,i0,a,i0,a)') 'impact3d: contact impact limit shortened ', &
+        ct%impact_cycles, ' of ', ct%cycles, ' cycles (docs/contact.md, 4.2)'
     write(output_unit, '(a,i0,a,i0,a,i0,a,i0,a)') 'impact3d: contact local sets ', smallest, &
         ' to ', largest, ' nodes per rank of ', ct%nall, ' contact nodes; ', ct%rebuilds, &
         ' global searches'

@@ -240,6 +240,7 @@ module contact_state
     !> the stable step, so a short landing step does not fling nodes apart.
     real(rk) :: landing = 1.0_rk
     integer :: rebuilds = 0 !< global searches (RCB rebuilds) so far
+    integer(i8) :: impact_cycles = 0 !< cycles whose step the impact limit shortened
     integer :: recuts = 0 !< searches whose RCB was cut again (load drift)
     integer :: balanced_searches = 0 !< searches that found pairs
     real(rk) :: balance_sum = 0.0_rk !< sum over them of largest part's pairs / mean

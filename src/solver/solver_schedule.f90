@@ -27,6 +27,7 @@ module solver_schedule
     procedure :: start => schedule_start
     procedure :: choose_step => schedule_choose_step
     procedure :: land => schedule_land
+    procedure :: shorten => schedule_shorten
     procedure :: history_due => schedule_history_due
     procedure :: status_due => schedule_status_due
     procedure :: dump_reason => schedule_dump_reason
@@ -78,8 +79,17 @@ contains
     ok = .not. (dt < this%dt_min .and. .not. (this%last .or. this%dump_now))
   end subroutine schedule_choose_step
 
+  !> The cycle's step was cut below the planned one (the contact's impact
+  !> limit): it lands on neither t_end nor a dump; a later step does.
+  subroutine schedule_shorten(this)
+    class(schedule_t), intent(inout) :: this
+    this%last = .false.
+    this%dump_now = .false.
+  end subroutine schedule_shorten
+
   !> The time after a step of dt from time, landed exactly on t_end or the
   !> dump time it aimed at.
+
   real(rk) function schedule_land(this, time, dt) result(t)
     class(schedule_t), intent(in) :: this
     real(rk), intent(in) :: time, dt

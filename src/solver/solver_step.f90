@@ -43,8 +43,8 @@ contains
     type(material_zones_t), intent(inout) :: mz
     type(boundary_t), intent(inout) :: bc
     type(contact_t), intent(inout) :: ct
-    type(schedule_t), intent(in) :: plan
-    real(rk), intent(in) :: dt
+    type(schedule_t), intent(inout) :: plan !< shortened when the contact cuts the step
+    real(rk), intent(in) :: dt !< the planned step
     integer, intent(out) :: bad_half, bad !< local zones with bad volume (0 = none)
     type(timers_t), intent(inout) :: timers
     type(failure_t), intent(in) :: failures(:) !< per material
@@ -52,16 +52,20 @@ contains
     type(side_context_t), intent(in) :: sides !< blocks and closed sets (contact surfaces)
     type(exact_sum_t) :: work(2) !< boundary, contact work of the step
     integer :: eroded
+    real(rk) :: step
     call timers%start('step')
-    state%dt = dt
+    step = dt
     ct%landing = min(dt / max(plan%dt_stable, tiny(1.0_rk)), 1.0_rk)
     if (opt%single_stage) then
       call solver_single_step(opt, materials, mesh, state, mz, bc, dt, bad, work(1), timers)
       bad_half = 0
     else
-      call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, dt, bad_half, bad, &
+      call solver_lagrange_step(opt, materials, mesh, state, mz, bc, ct, step, bad_half, bad, &
           work(1), work(2), timers, failures)
+      ! A step the contact cut short lands on nothing: the next one does.
+      if (step < dt) call plan%shorten()
     end if
+    state%dt = step
     ! Exact sums: the works, and so the history, do not depend on the rank count.
     call par_sum_exact(work)
     state%boundary_work = state%boundary_work + exact_value(work(1))
@@ -70,7 +74,7 @@ contains
     if (allocated(state%zone_damage) .or. allocated(state%zone_alive)) call erosion_step(mesh, &
         state, mz, failures, erosion, opt, bad_half, bad, eroded)
     if (eroded > 0) call solver_contact_refresh(mesh, state, bc, ct, sides, timers)
-    state%time = plan%land(state%time, dt)
+    state%time = plan%land(state%time, step)
     state%cycle = state%cycle + 1
     state%dt_previous = plan%dt_stable
     call timers%stop('step')
@@ -127,7 +131,9 @@ contains
     type(material_zones_t), intent(in) :: mz
     type(boundary_t), intent(inout) :: bc
     type(contact_t), intent(inout) :: ct
-    real(rk), intent(in) :: dt
+    !> the cycle's step; the contact's impact limit may shorten it before
+    !> anything uses it (contact_apply's predictor)
+    real(rk), intent(inout) :: dt
     integer, intent(out) :: bad_half, bad
     type(exact_sum_t), intent(inout) :: work !< + boundary work of the step (local terms)
     type(exact_sum_t), intent(inout) :: contact_work !< + contact work of the step (local terms)
@@ -153,7 +159,7 @@ contains
     ! entries do nothing when the deck has no interface.)
     call timers%start('contact')
     call contact_apply(ct, state%node_position_old, state%node_velocity_old, &
-        state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time)
+        state%node_force, 0.5_rk * dt, state%cycle + 1, .false., wall_time, dt)
     call timers%stop('contact')
     call hydro_velocity_update(mesh, state, bc, 0.5_rk * dt, state%node_velocity_half)
     call timers%start('halo')

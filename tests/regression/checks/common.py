@@ -166,3 +166,6 @@ def add_restart(p, from_cycle=True):
     p.add_argument("--restart-np", type=int, default=1)
     if from_cycle:
         p.add_argument("--from-cycle", type=int, default=0)
+        p.add_argument("--from-time", type=float, default=None,
+                       help="restart from the uninterrupted run's dump at this time "
+                            "(its dump.dumps index) instead of --from-cycle")

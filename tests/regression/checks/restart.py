@@ -39,11 +39,26 @@ def full_run(args, deck):
     code, out, err = run(args, args.np, wd, deck)
     check("uninterrupted run exits 0", code == 0, err[-2000:])
     full = final_dump(wd)
+    if args.from_time is not None:
+        args.from_cycle = dump_cycle_at(wd, args.from_time)
     start = os.path.join(wd, "dump_%06d.h5" % args.from_cycle)
     check("mid-run dump exists", os.path.exists(start), start)
     if code != 0 or not os.path.exists(start):
         return full, None
     return full, start
+
+
+def dump_cycle_at(wd, time):
+    """The cycle of the dump at time (to 1e-12 relative) in wd's dump.dumps
+    index (lines: cycle, time, file); -1 when there is none."""
+    index = os.path.join(wd, "dump.dumps")
+    if not os.path.exists(index):
+        return -1
+    for line in open(index):
+        f = line.split()
+        if len(f) >= 2 and abs(float(f[1]) - time) <= 1e-12 * max(abs(time), 1.0):
+            return int(f[0])
+    return -1
 
 
 def cmd_restart(args):

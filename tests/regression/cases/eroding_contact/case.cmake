@@ -1,8 +1,9 @@
 # Eroding contact: the contact surfaces given by blocks follow the erosion
 # (check.py: audit clean after every rebuild, contact on the new surfaces,
 # contact work <= 0, energy balance with the eroded columns), DLM and DAM;
-# every dump and the exact history columns bitwise on 1, 2 and 3 ranks; a DLM
-# restart across the erosion bitwise.
+# every dump and the exact history columns bitwise on 1, 2 and 3 ranks; a
+# restart from the dump at t = 2, before the first erosion (t = 2.7 DLM, 2.9
+# DAM), bitwise the uninterrupted run after it.
 foreach(m dlm dam)
   impact3d_regress(contact/eroding_${m} "regression;contact;solids"
     ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/eroding_${m} --method ${m}
@@ -20,5 +21,5 @@ impact3d_regress(contact/eroding_emptied "regression;contact;solids"
 foreach(m dlm dam)
   impact3d_check(restart/eroding_${m} "regression;parallel;contact;solids" restart
     --workdir ${WORK}/restart_eroding_${m} --deck ${CMAKE_CURRENT_LIST_DIR}/pen_${m}.nml
-    --np 1 --restart-np 2 --from-cycle 30)
+    --np 1 --restart-np 2 --from-time 2.0)
 endforeach()
