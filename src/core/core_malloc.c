@@ -18,7 +18,8 @@
  *
  * A threshold the user set in the environment (MALLOC_MMAP_THRESHOLD_, or
  * glibc.malloc.mmap_threshold in GLIBC_TUNABLES; glibc reads them at the
- * first malloc) is left alone, set-up and loop. Where mallopt is absent
+ * first malloc) is left alone, set-up and loop; so is a trim threshold
+ * (MALLOC_TRIM_THRESHOLD_, glibc.malloc.trim_threshold). Where mallopt is absent
  * (another C library: CMake's check leaves IMPACT3D_HAVE_MALLOPT
  * undefined), nothing is done. Bound to Fortran by module core_malloc. No
  * MPI here. */
@@ -31,11 +32,13 @@
 /* 1 if this process pinned the threshold (and may release it). */
 static int pinned = 0;
 
-static int environment_sets_threshold(void)
+/* 1 if the environment sets the parameter: variable (MALLOC_..._) or
+ * tunable (glibc.malloc....) in GLIBC_TUNABLES. */
+static int environment_sets(const char *variable, const char *tunable)
 {
   const char *tunables = getenv("GLIBC_TUNABLES");
-  if (getenv("MALLOC_MMAP_THRESHOLD_") != NULL) return 1;
-  return tunables != NULL && strstr(tunables, "glibc.malloc.mmap_threshold") != NULL;
+  if (getenv(variable) != NULL) return 1;
+  return tunables != NULL && strstr(tunables, tunable) != NULL;
 }
 
 /* The set-up's policy: the mmap threshold fixed at bytes. Returns 1 if set,
@@ -43,7 +46,7 @@ static int environment_sets_threshold(void)
  * library has no mallopt or refused the value. */
 int impact3d_malloc_setup(long bytes)
 {
-  if (environment_sets_threshold()) return 0;
+  if (environment_sets("MALLOC_MMAP_THRESHOLD_", "glibc.malloc.mmap_threshold")) return 0;
 #if defined(IMPACT3D_HAVE_MALLOPT) && defined(M_MMAP_THRESHOLD)
   if (bytes < 0 || bytes > 0x7fffffffL) return -1;
   if (mallopt(M_MMAP_THRESHOLD, (int)bytes) != 1) return -1;
@@ -65,7 +68,8 @@ int impact3d_malloc_loop(long mmap_bytes, long trim_bytes)
   if (mmap_bytes < 0 || mmap_bytes > 0x7fffffffL) return -1;
   if (trim_bytes < 0 || trim_bytes > 0x7fffffffL) return -1;
   if (mallopt(M_MMAP_THRESHOLD, (int)mmap_bytes) != 1) return -1;
-  if (mallopt(M_TRIM_THRESHOLD, (int)trim_bytes) != 1) return -1;
+  if (!environment_sets("MALLOC_TRIM_THRESHOLD_", "glibc.malloc.trim_threshold") &&
+      mallopt(M_TRIM_THRESHOLD, (int)trim_bytes) != 1) return -1;
   pinned = 0;
   return 1;
 #else
