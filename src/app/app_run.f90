@@ -7,6 +7,7 @@ module app_run
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: wall_time, timers_t
+  use core_malloc, only: malloc_setup_policy, malloc_loop_policy
   use mesh_local, only: mesh_t
   use hydro_state, only: state_t
   use hydro_boundary, only: boundary_t
@@ -56,7 +57,7 @@ contains
     type(probes_t) :: probes
     character(len=256) :: restart
     character(len=400) :: msg
-    integer :: bad, ierr, k
+    integer :: bad, ierr, k, policy
     logical :: deck_ok, setup_failed
     character(len=600), allocatable :: summary(:)
     real(rk) :: wall_begin, sums(5)
@@ -64,6 +65,10 @@ contains
 
     ! The wall-time limit counts from here: set-up and the restart read included.
     wall_begin = wall_time()
+    ! malloc's mmap threshold stays at 128 kB through the set-up (unless the
+    ! environment sets it): a mesh reader's freed temporaries must not leave
+    ! the partition and migration a fragmented heap (core_malloc.c).
+    call malloc_setup_policy(policy)
     ! The report's sections, in the same order on every rank.
     call timers%add('set-up')
     call timers%add('mesh generate', within='set-up')
@@ -143,6 +148,8 @@ contains
       call probe_sample(probes, state)
     end if
     call timers%stop('set-up')
+    ! The loop's large temporaries from the heap, not mapped every cycle.
+    call malloc_loop_policy(policy)
     call time_loop(config, mesh, state, mz, bc, ct, ctl, probes, len_trim(restart) > 0, &
         wall_begin, timers, code)
     call h5_library_close(ierr, msg)

@@ -11,7 +11,7 @@ module app_setup
   use mesh_global, only: global_mesh_t, mesh_make_box, mesh_append, NAME_LEN
   use mesh_import, only: mesh_import_file, mesh_import_group_kind, mesh_import_summary
   use mesh_exodus, only: exodus_part_t, exodus_scan, range_add_exodus
-  use mesh_gmsh, only: gmsh_part_t, gmsh_scan, range_add_gmsh
+  use mesh_gmsh_stream, only: gmsh_part_t, gmsh_scan, range_add_gmsh
   use mesh_curved, only: curved_part
   use mesh_blocks, only: block_part_t, part_assemble, range_add_part, part_set_counts
   use mesh_local, only: mesh_t

@@ -39,11 +39,10 @@ the issue's bound between two rank counts that both have interior parts:
 
 --problem sedov_exodus and sedov_gmsh read the same Sedov box from a mesh
 file written at test time (tests/tools/exodus_box, given by --exodus-box;
-weak.write_gmsh_box), on 1 and 4 ranks. The peak that counts is the one
-printed once the mesh is read ("mesh read: peak memory per rank (VmHWM) so
-far", before partitioning: the whole run's peak is the partition and
-migration's, the same as for a generated box and bounded by the sedov
-case). Criterion: S_read(4) <= 1.25 S_read(1), largest rank. At that point
+weak.write_gmsh_box), on 1 and 4 ranks, with the dumps of the sedov case.
+Two peaks count: the one printed once the mesh is read ("mesh read: peak
+memory per rank (VmHWM) so far", before partitioning) and the whole run's.
+Criterion 1: S_read(4) <= 1.25 S_read(1), largest rank. At that point
 each rank holds its range of 40^3 zones (about 260 B a zone: node ids,
 corner positions, block) in both runs, plus the import's buffers, which are
 its share (the node requests and answers of its zones) or fixed (reads and
@@ -53,6 +52,16 @@ file, and its read buffers): 3 x 64,000 more zones at N = 4. The import
 before the reads by ranges (rank 0 read the whole file, then scattered it)
 measured S_read(1) = 55.3 MB, S_read(4) = 85.1 MB, 1.54 (Exodus II); this
 code 33.0 and 33.1 MB, 1.003.
+Criterion 2: S(4) <= 1.25 S(1) over the whole run, largest rank, as for the
+generated box (the sedov case; the same derivation: once read, the mesh is
+the box's, with the same ghost layers, imbalance and buffers). What it
+catches is a reader that leaves the later steps a worse heap than the box
+generator does: glibc raises its mmap threshold when a large block is
+freed, and the partition and migration after an import then fragmented
+the heap (src/core/core_malloc.c). Before the set-up pinned the threshold
+this deck measured S(1) = 64.7 MB, S(4) = 86.1 MB, 1.33 (Exodus II: fails)
+and 67.3 and 81.9 MB, 1.22 (Gmsh: passes, so this bound alone would not
+have caught it there); with it 1.04 for both.
 """
 
 import argparse
@@ -77,8 +86,7 @@ def main():
     args = p.parse_args()
     ranks, bound = ((4, 8), 1.10) if args.problem == "contact" else ((1, 4), BOUND)
     imported = args.problem.startswith("sedov_")
-    measure = "rss_read_largest" if imported else "rss_largest"
-    peak = {}
+    peak, peak_read = {}, {}
     for n in ranks:
         for k in (8, 40):
             workdir = os.path.join(args.workdir, f"k{k}_np{n}")
@@ -92,26 +100,33 @@ def main():
                     mesh = "box.exo"
                     subprocess.run([args.exodus_box, str(k), str(k), str(k * n), "1.2", "1.2",
                                     repr(1.2 * n), os.path.join(workdir, mesh)], check=True)
-                deck = sedov_import_deck(k, n, args.problem[6:], mesh, dumps=False)
+                deck = sedov_import_deck(k, n, args.problem[6:], mesh)
             code, rep, out = run_stack(os.path.abspath(args.exe), k, n, workdir, args.mpiexec,
                                        deck_text=deck)
-            if code != 0 or measure not in rep:
+            wanted = ("rss_largest", "rss_read_largest") if imported else ("rss_largest",)
+            if code != 0 or any(w not in rep for w in wanted):
                 print(out[-3000:])
                 print(f"FAIL run K={k} N={n}: exit {code}")
                 return 1
-            peak[(k, n)] = rep[measure]
+            peak[(k, n)] = rep["rss_largest"]
+            if imported:
+                peak_read[(k, n)] = rep["rss_read_largest"]
             read = (f"; once the mesh is read: largest {rep['rss_read_largest']:.1f}, rank 0 "
                     f"{rep['rss_read_rank0']:.1f}" if "rss_read_largest" in rep else "")
             print(f"K={k:2d} N={n}: largest rank peak {rep['rss_largest']:.1f} MB "
                   f"(rank 0 {rep['rss_rank0']:.1f}, median {rep['rss_median']:.1f}){read}")
-    share = {n: peak[(40, n)] - peak[(8, n)] for n in ranks}
     lo, hi = ranks
-    ratio = share[hi] / share[lo]
-    ok = ratio <= bound
-    what = "zones' share once the mesh is read" if imported else "zones' share"
-    print(f"{'PASS' if ok else 'FAIL'} {what}: S({lo}) = {share[lo]:.1f} MB, "
-          f"S({hi}) = {share[hi]:.1f} MB, S({hi})/S({lo}) = {ratio:.3f} (bound {bound})")
-    return 0 if ok else 1
+    checks = [("zones' share once the mesh is read", peak_read)] if imported else []
+    checks.append(("zones' share over the whole run" if imported else "zones' share", peak))
+    failed = 0
+    for what, peaks in checks:
+        share = {n: peaks[(40, n)] - peaks[(8, n)] for n in ranks}
+        ratio = share[hi] / share[lo]
+        ok = ratio <= bound
+        failed += not ok
+        print(f"{'PASS' if ok else 'FAIL'} {what}: S({lo}) = {share[lo]:.1f} MB, "
+              f"S({hi}) = {share[hi]:.1f} MB, S({hi})/S({lo}) = {ratio:.3f} (bound {bound})")
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":
