@@ -15,10 +15,12 @@
 !>               0.2) of the penetration beyond an allowance (docs/contact.md,
 !>               9.3) removed per stable step (Baumgarte-type position
 !>               feedback; a step cut short to land on a dump time keeps the
-!>               stable step's recovery speed, ct%landing). Without it the one pass, which
-!>               under-corrects a node whose neighbours move differently, has
-!>               nothing to pull a drifting node back: on the curved Sedov
-!>               split the ball's valence-3 vertex escaped through the gas
+!>               stable step's recovery speed, ct%landing; a pair separating
+!>               at t^n is not pushed apart faster than it separates).
+!>               Without it the one pass, which under-corrects a node whose
+!>               neighbours move differently, has nothing to pull a drifting
+!>               node back: on the curved Sedov split the ball's valence-3
+!>               vertex escaped through the gas
 !>               surface (0.45 at t = 1, fine mesh). Below recovery = 0.5 a
 !>               pair never opens a gap, so it does not chatter; the
 !>               allowance leaves alone the sagitta mismatch of two faceted
@@ -590,12 +592,13 @@ contains
 
     !> Target approach speed of facet pair q in the velocity form: the
     !> separation that removes the fraction dl%recovery of its penetration at
-    !> t^n over the step (0 for a gap), and none for a pair that separates at
-    !> t^n (w < 0): its penetration already shrinks, and a push to the
-    !> recovery's speed only adds kinetic energy (docs/contact.md, 9.3: the
-    !> penetration problem's folded nose rim, pairs 0.5-0.9 mm deep by their
-    !> facets' planes while no node was, separating at 150 m/s and pushed
-    !> apart at 950 m/s, +80 J of contact work in 3.5 us).
+    !> t^n over the step (0 for a gap), but never faster than a pair that
+    !> already separates at t^n (w < 0) separates: its penetration shrinks
+    !> already, and a push beyond its own speed only adds kinetic energy
+    !> (docs/contact.md, 9.3: on the penetration problem's folded nose rim,
+    !> pairs 0.5-0.9 mm deep by their facets' planes while no node was,
+    !> separating at 150 m/s, were pushed apart at 950 m/s: +80 J of
+    !> contact work in 3.5 us).
     pure real(rk) function recovery_speed(q, w) result(speed)
       integer, intent(in) :: q
       real(rk), intent(in) :: w !< the pair's approach speed at t^n
