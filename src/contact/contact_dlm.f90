@@ -49,7 +49,7 @@ module contact_dlm
   use contact_records, only: records_t, add_record
   use contact_state, only: FACING, FACING_SURFACES, AREA_TOLERANCE, PAIR_SEGMENTS, &
       SURFACE_LEN, interface_t, contact_t, contact_spec_t, contact_method_t, geometry_update, &
-      recovery_allowance, recovery_excess, recovery_speed_of
+      recovery_allowance, recovery_excess, recovery_speed_of, ALLOWANCE_SHARE
   use contact_kernels, only: dlm_pair_force, dlm_pair_friction, KERNEL_COORDINATE, &
       KERNEL_VELOCITY, KERNEL_COMBINED
   implicit none
@@ -592,18 +592,22 @@ contains
 
     !> Target approach speed of facet pair q in the velocity form: the
     !> separation that removes the fraction dl%recovery of its penetration at
-    !> t^n over the step (0 for a gap), but never faster than a pair that
-    !> already separates at t^n (w < 0) separates: its penetration shrinks
-    !> already, and a push beyond its own speed only adds kinetic energy
+    !> t^n over the step (0 for a gap). A pair deeper than the audit's
+    !> tolerance (its allowance / ALLOWANCE_SHARE) that already separates at
+    !> t^n (w < 0) is not pushed apart faster than it separates: its
+    !> penetration shrinks already, and the push only adds kinetic energy
     !> (docs/contact.md, 9.3: on the penetration problem's folded nose rim,
     !> pairs 0.5-0.9 mm deep by their facets' planes while no node was,
     !> separating at 150 m/s, were pushed apart at 950 m/s: +80 J of
-    !> contact work in 3.5 us).
+    !> contact work in 3.5 us). Within the tolerance the recovery is the
+    !> drift correction the method needs and is left whole.
     pure real(rk) function recovery_speed(q, w) result(speed)
       integer, intent(in) :: q
       real(rk), intent(in) :: w !< the pair's approach speed at t^n
       speed = -recovery_speed_of(dl%recovery, dl%fp_excess(q), ct%landing, dt, ct%speed)
-      if (w < 0.0_rk) speed = max(speed, w)
+      ! Beyond the tolerance: excess = pen - allowance > (1 - share) pen.
+      if (w < 0.0_rk .and. dl%fp_excess(q) > (1.0_rk - ALLOWANCE_SHARE) * dl%fp_pen(q)) &
+          speed = max(speed, w)
     end function recovery_speed
 
     !> Share c of facet pair q (c = 1 hitting, 2 target node), scaled by the
