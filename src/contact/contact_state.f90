@@ -69,7 +69,7 @@ module contact_state
   !> recovery (DLM's facet pairs, DAM's slave nodes): the recovery starts well
   !> below the tolerance, so a pair it holds keeps a margin for one step's
   !> overshoot.
-  real(rk), parameter :: ALLOWANCE_SHARE = 0.4_rk
+  real(rk), parameter, public :: ALLOWANCE_SHARE = 0.4_rk
   !> The recovery's separating speed is at most this share of the contact's
   !> largest node speed (recovery_speed_of).
   real(rk), parameter :: RECOVERY_SPEED_SHARE = 1.0_rk
