@@ -16,7 +16,8 @@ impact3d_regress(long/penetration_coarse_20us "regression;contact;solids;long"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/penetration_coarse_20us
   --t-end 20.0e-6 --mpiexec ${MPIEXEC_EXECUTABLE} --np 2)
 # * long/restart_penetration: 12 us on 2 ranks, restarted from the dump at
-#   cycle 322 (11 zones eroded, the surfaces rebuilt with offsets measured)
+#   6 us (cycle 322 when written; 11 zones eroded, the surfaces rebuilt with
+#   offsets measured)
 #   on 3 ranks: every later dump bitwise the uninterrupted run's (eroded
 #   zones turned inside out keep their density from the dump).
 impact3d_check(long/restart_penetration "regression;parallel;contact;solids;long" restart
@@ -25,4 +26,4 @@ impact3d_check(long/restart_penetration "regression;parallel;contact;solids;long
   --replace "file = 'penetration_coarse.msh'"
             "file = '${PROBLEMS}/penetration/penetration_coarse.msh'"
   --replace "dump_interval = 10.0e-6" "dump_interval = 3.0e-6"
-  --np 2 --restart-np 3 --from-cycle 322)
+  --np 2 --restart-np 3 --from-time 6.0e-6)
