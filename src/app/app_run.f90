@@ -65,10 +65,7 @@ contains
 
     ! The wall-time limit counts from here: set-up and the restart read included.
     wall_begin = wall_time()
-    ! malloc's mmap threshold stays at 128 kB through the set-up (unless the
-    ! environment sets it): a mesh reader's freed temporaries must not leave
-    ! the partition and migration a fragmented heap (core_malloc.c).
-    call malloc_setup_policy(policy)
+    policy = 0
     ! The report's sections, in the same order on every rank.
     call timers%add('set-up')
     call timers%add('mesh generate', within='set-up')
@@ -89,6 +86,15 @@ contains
     call h5_library_open(ierr, msg)
     if (ierr /= 0) call status%add('HDF5: '//trim(msg))
     if (status%ok()) call deck_read(deck_path, config, status)
+    ! A deck that reads a mesh file keeps malloc's mmap threshold at 128 kB
+    ! through the set-up (unless the environment sets it): the reader's
+    ! freed temporaries must not leave the partition and migration a
+    ! fragmented heap (core_malloc.c). It costs set-up time (each large block
+    ! mapped afresh), which a generated mesh, whose whole-run share holds its
+    ! bound without it, does not pay.
+    if (status%ok()) then
+      if (any(config%parts%mesh_file /= '')) call malloc_setup_policy(policy)
+    end if
     deck_ok = status%ok()
     restart = config%restart
     if (len_trim(restart_path) > 0) restart = restart_path
