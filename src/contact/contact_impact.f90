@@ -110,13 +110,16 @@ contains
       type(segment_data_t), intent(in) :: d
       real(rk) :: edge(3), corner(3), next(3), g, w, a, side
       integer :: j
+      if (.not. limit > 0.0_rk) return
       ! Approach speed along the segment's outward normal (> 0: closing).
       w = -dot_product(ct%v(:, n) - d%velocity(:, s), d%normal(:, s))
       if (.not. w > 0.0_rk) return
       g = dot_product(ct%x(:, n) - d%centre(:, s), d%normal(:, s))
       if (g < 0.0_rk) return
       a = d%allowance(s)
-      if (2.0_rk * (g + a) >= limit * w) return
+      ! (Not limit * w: that overflows while limit is huge. And once this
+      ! test is passed, 2 (g + a) / w < limit cannot overflow.)
+      if (2.0_rk * (g + a) / limit >= w) return
       if (any(seg == n)) return
       ! The node's projection lies on the segment: left of every edge, the
       ! corners running counter-clockwise about the outward normal. A node
