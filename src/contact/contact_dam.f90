@@ -444,7 +444,13 @@ contains
       target = target + m_%recover(q)
       vnew = dam_put_back_velocity(vm(:, n), nrm, target)
       vput = vnew
-      if (p%spec%friction > 0.0_rk) then
+      ! A slave whose motion is prescribed (a rigid platen's node in a
+      ! reverse pass) keeps its velocity (dam_forces), so it takes no
+      ! friction and gives none: its reaction, its scaled mass
+      ! (RIGID_MASS_FACTOR) times a velocity bounded only by round-off,
+      ! crushed the folding tube's top ring in cycle 3. The friction of that
+      ! patch is the other pass's, where the deformable side is the slave.
+      if (p%spec%friction > 0.0_rk .and. .not. ct%all_rigid(ct%all_of(n))) then
         vmi = 0.0_rk
         do c = 1, 4
           vmi = vmi + m_%rbf(c, q) * vm(:, p%b%segments(c, m_%primary(q)%segment))
