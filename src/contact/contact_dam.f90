@@ -563,7 +563,7 @@ contains
     touched = .false.
     do i = 1, ct%nown
       l = ct%own_local(i)
-      mass = ct%all_mass(ct%own_contact(i))
+      mass = ct%own_mass(i)
       mbar(i) = mass
       fbar(:, i) = force(:, l)
       pbar(:, i) = mass * v_old(:, l)
@@ -581,7 +581,7 @@ contains
     end do
     do i = 1, ct%nown
       l = ct%own_local(i)
-      mass = ct%all_mass(ct%own_contact(i))
+      mass = ct%own_mass(i)
       vmatch(1:3, i) = v_old(:, l) + dt * force(:, l) / mass
       vmatch(4:7, i) = 0.0_rk
       if (.not. touched(i)) cycle
@@ -614,7 +614,7 @@ contains
       if (r%id(3, j) > int(ct%nall, i8)) then
         ! Friction reaction on a master node (dam_put_back): a momentum,
         ! after the node's own put-back if it is a slave too (key order).
-        vfinal(:, i) = vfinal(:, i) + r%val(:, j) / ct%all_mass(ct%own_contact(i))
+        vfinal(:, i) = vfinal(:, i) + r%val(:, j) / ct%own_mass(i)
       else
         vfinal(:, i) = r%val(:, j)
       end if
@@ -622,10 +622,10 @@ contains
     end do
     do i = 1, ct%nown
       if (.not. (has(i) .or. touched(i))) cycle
-      if (ct%all_rigid(ct%own_contact(i))) cycle
+      if (ct%own_rigid(i)) cycle
       has(i) = .true.
       l = ct%own_local(i)
-      mass = ct%all_mass(ct%own_contact(i))
+      mass = ct%own_mass(i)
       fck(:, i) = mass * (vfinal(:, i) - v_old(:, l)) / dt - force(:, l)
       p%sums%dmom = p%sums%dmom + mass * (vfinal(:, i) - v_old(:, l)) - dt * force(:, l)
     end do

@@ -63,7 +63,7 @@ module contact_enforce
   use contact_impact, only: impact_step_limit, IMPACT_FLOOR
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
-      scatter_nodes
+      scatter_nodes, directory_build
   use parallel_env, only: par_sum_array, par_min, par_max, par_max_array, par_rank, par_size
   implicit none
   private
@@ -250,8 +250,8 @@ contains
   subroutine forget_index(ct)
     type(contact_t), intent(inout) :: ct
     integer :: k
-    deallocate(ct%own_contact, ct%own_local, ct%own_of, ct%fc, ct%gap_own, ct%key_capable, &
-        ct%xs)
+    deallocate(ct%own_contact, ct%own_local, ct%own_mass, ct%own_rigid, ct%dir_gid, &
+        ct%dir_owner, ct%fc, ct%gap_own, ct%key_capable, ct%xs)
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
         deallocate(p%was_active, p%offset, p%own_in_a, p%fc_own, p%own_slave)
@@ -279,7 +279,7 @@ contains
     integer(i8), intent(in), optional :: old_gid(:)
     real(rk), intent(in), optional :: old_offset(:, :) !< (size(old_gid), npair)
     integer(i8), allocatable :: all(:)
-    real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
+    real(rk), allocatable :: xc(:, :), flat(:)
     integer :: k, n, i, c, count_all
 
     ! Contact nodes: every node of every surface, by global id.
@@ -311,41 +311,37 @@ contains
     end do
     ct%own_contact = ct%own_contact(:ct%nown)
     ct%own_local = ct%own_local(:ct%nown)
-    allocate(ct%own_of(ct%nall))
-    ct%own_of = 0
+    ! The owners' masses; a node whose motion is prescribed is rigid for the
+    ! contact: its mass is scaled by RIGID_MASS_FACTOR, so every exchange
+    ! and multiplier moves the other side only, and it takes no contact
+    ! force (the constraint's reaction is the boundary's work). The parts
+    ! get the masses of their local sets with the migration plan.
+    allocate(ct%own_mass(ct%nown), ct%own_rigid(ct%nown))
     do i = 1, ct%nown
-      ct%own_of(ct%own_contact(i)) = i
+      ct%own_mass(i) = node_mass(ct%own_local(i))
+      ct%own_rigid(i) = .false.
+      if (present(rigid)) ct%own_rigid(i) = rigid(ct%own_local(i))
     end do
-    allocate(packed(6, ct%nall))
-    packed = 0.0_rk
+    where (ct%own_rigid) ct%own_mass = RIGID_MASS_FACTOR * ct%own_mass
+    call directory_build(ct)
+    ! Every contact node's position at x, for the edge flags, sizes,
+    ! sagittas and reach below.
+    allocate(flat(3 * ct%nall))
+    flat = 0.0_rk
     do i = 1, ct%nown
-      packed(1, ct%own_contact(i)) = node_mass(ct%own_local(i))
-      packed(2, ct%own_contact(i)) = real(par_rank(), rk)
-      if (present(rigid)) then
-        if (rigid(ct%own_local(i))) packed(3, ct%own_contact(i)) = 1.0_rk
-      end if
-      packed(4:6, ct%own_contact(i)) = x(:, ct%own_local(i))
+      c = ct%own_contact(i)
+      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
     end do
-    allocate(flat(6 * ct%nall))
-    flat = reshape(packed, [6 * ct%nall])
     call par_sum_array(flat)
-    packed = reshape(flat, [6, ct%nall])
     ! (one owner each, zero elsewhere: the sums are the owners' values)
-    xc = packed(4:6, :)
+    xc = reshape(flat, [3, ct%nall])
+    deallocate(flat)
     do k = 1, ct%npair
       call surface_renumbered(raw_a(k), ct%all_gid, xc, ct%pairs(k)%all_a)
       call surface_renumbered(raw_b(k), ct%all_gid, xc, ct%pairs(k)%all_b)
       ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
           median_size(xc, ct%pairs(k)%all_b))
     end do
-    ct%all_mass = packed(1, :)
-    ct%all_owner = nint(packed(2, :))
-    ! A node whose motion is prescribed is rigid for the contact: its mass is
-    ! scaled by RIGID_MASS_FACTOR, so every exchange and multiplier moves the
-    ! other side only, and it takes no contact force (the constraint's
-    ! reaction is the boundary's work).
-    ct%all_rigid = packed(3, :) > 0.5_rk
-    where (ct%all_rigid) ct%all_mass = RIGID_MASS_FACTOR * ct%all_mass
     allocate(ct%fc(3, ct%nown))
     ct%fc = 0.0_rk
     call segment_homes(ct, mesh)
@@ -547,8 +543,8 @@ contains
         do k = first, last
           associate(p => ct%pairs(k))
             if (r > p%method%rounds()) cycle
-            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown, ct%recv_count > 0, &
-                ct%send_count > 0, ct%traffic)
+            call send_records(out(k), ct%all_of, ct%owner, ct%own_contact, ct%nown, &
+                ct%recv_count > 0, ct%send_count > 0, ct%traffic)
             allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
             call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
                 fck(:, :, k), has(:, k))
@@ -560,7 +556,7 @@ contains
         call lap(ct%migrate_seconds)
       end do
       do i = 1, ct%nown
-        if (ct%all_rigid(ct%own_contact(i))) then
+        if (ct%own_rigid(i)) then
           ! Prescribed motion: the boundary holds the node (contact_setup).
           has(i, first:last) = .false.
           cycle
@@ -644,7 +640,7 @@ contains
   subroutine contact_report(ct, loop_seconds)
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
-    real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit
+    real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit, owned
     real(rk) :: bytes, messages, exchanges, collectives, comm, per
     integer :: largest, smallest, k
     if (ct%npair == 0) return
@@ -664,21 +660,32 @@ contains
     largest = par_max(ct%ncn_max)
     smallest = -par_max(-ct%ncn_max)
     loop = par_max(loop_seconds)
-    ! Memory: the static whole-surface data every rank holds, and this part's
-    ! working data (local set, local surfaces, geometry and pair caches).
-    whole = real(ct%nall, rk) * real(storage_size(ct%all_gid) + storage_size(ct%all_mass) + &
-        2 * storage_size(ct%all_owner), rk) / 8.0_rk
-    local = real(ct%ncn_max, rk) * real(10 * storage_size(1.0_rk) + storage_size(1), rk) / 8.0_rk
+    ! Memory: the static whole-surface data every rank holds (the contact
+    ! nodes' ids and search positions, the surfaces, each interface's
+    ! offsets and sagittas), this part's working data (local set, local
+    ! surfaces, geometry and pair caches), and the owners' share (owned
+    ! nodes, the owner directory).
+    whole = real(ct%nall, rk) * real(storage_size(ct%all_gid) + 3 * storage_size(1.0_rk), rk) / &
+        8.0_rk
+    local = real(ct%ncn_max, rk) * real(10 * storage_size(1.0_rk) + 2 * storage_size(1), rk) / &
+        8.0_rk
+    owned = real(ct%nown, rk) * real(2 * storage_size(1) + 6 * storage_size(1.0_rk) + &
+        storage_size(1_i8), rk) / 8.0_rk + real(size(ct%dir_gid), rk) * &
+        real(storage_size(1_i8) + storage_size(1), rk) / 8.0_rk
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b)
+        whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b) + &
+            real(ct%nall + p%all_a%nseg + p%all_b%nseg, rk) * real(storage_size(1.0_rk), rk) / &
+            8.0_rk
         local = local + surface_bytes(p%a) + surface_bytes(p%b) + geometry_bytes(p%ga) + &
             geometry_bytes(p%gb)
         local = local + p%method%bytes()
+        owned = owned + real(ct%nown, rk) * real(4 * storage_size(1.0_rk), rk) / 8.0_rk
       end associate
     end do
     whole = par_max(whole)
     local = par_max(local)
+    owned = par_max(owned)
     if (par_rank() /= 0) return
     write(output_unit, '(a,3(f10.3,a),f6.1,a)') 'impact3d: contact ', search, &
         ' s search and RCB, ', enforce, ' s enforcement, ', migrate, ' s migration (', &
@@ -708,9 +715,10 @@ contains
         'impact3d: contact pairs per part, largest / mean: ', &
         ct%balance_sum / real(ct%balanced_searches, rk), ' on average, ', ct%balance_worst, &
         ' at worst; ', ct%recuts, ' of ', ct%rebuilds, ' searches re-cut the RCB (load drift)'
-    write(output_unit, '(a,f10.3,a,f10.3,a)') 'impact3d: contact memory per rank ', &
+    write(output_unit, '(a,f10.3,a,f10.3,a,f10.3,a)') 'impact3d: contact memory per rank ', &
         local / 1.0e6_rk, ' MB working set (largest), ', whole / 1.0e6_rk, &
-        ' MB whole-surface topology (every rank)'
+        ' MB whole-surface topology (every rank), ', owned / 1.0e6_rk, &
+        ' MB owned nodes and owner directory (largest)'
 
   contains
 

@@ -25,7 +25,7 @@ module contact_monitor
   use contact_surface, only: contact_surface_t, surface_renumbered
   use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
   use contact_state, only: contact_spec_t, interface_t, contact_t, contact_method_t, &
-      initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN
+      initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN, owned_index
   use contact_factory, only: contact_method_new
   use contact_sides, only: side_context_t, side_surface
   use mesh_local, only: mesh_t
@@ -337,7 +337,7 @@ contains
     integer :: i
     allocate(owned(surf%nnode))
     do i = 1, surf%nnode
-      owned(i) = ct%own_of(surf%nodes(i)) > 0
+      owned(i) = owned_index(ct, surf%nodes(i)) > 0
     end do
   end function owned_nodes
 
@@ -457,7 +457,7 @@ contains
         do i = 1, p%all_a%nnode
           if (.not. sel_a(i)) cycle
           c = p%all_a%nodes(i)
-          o = ct%own_of(c)
+          o = owned_index(ct, c)
           ct%gap_own(o) = min(ct%gap_own(o), ra%gap(i))
           worst(1) = max(worst(1), ra%pen(i))
           if (ra%pen(i) > ra%tol(i)) then
@@ -470,7 +470,7 @@ contains
           do i = 1, p%all_b%nnode
             if (.not. sel_b(i)) cycle
             c = p%all_b%nodes(i)
-            o = ct%own_of(c)
+            o = owned_index(ct, c)
             ct%gap_own(o) = min(ct%gap_own(o), rb%gap(i))
             worst(2) = max(worst(2), rb%pen(i))
             if (rb%pen(i) > rb%tol(i)) then

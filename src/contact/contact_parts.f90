@@ -31,19 +31,20 @@
 !> Nodes far from any pair belong to no local set and cost nothing.
 module contact_parts
   use core_kinds, only: rk, ik, i8
-  use core_sort, only: sort_order, sort_values
+  use core_sort, only: sort_order, sort_values, sorted_find
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_node_index, add_ring, local_surface, &
       keep_lower_side
   use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
   use contact_state, only: contact_t, selection_t, int_list_t, PAIR_SEGMENTS, capture_of, &
-      key_node, geometry_free
+      key_node, geometry_free, owned_index
   use parallel_env, only: par_max, par_size, par_allgather
   use parallel_exchange, only: par_exchange, par_exchange_counts
   use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of, rcb_parts_of_box
   implicit none
   private
   public :: segment_homes, contact_rebuild, contact_localize, gather_nodes, scatter_nodes
+  public :: directory_build
 
   !> The RCB is cut again at a search whose pairs put more than this times
   !> the mean on one part (when there are at least 16 pairs per part).
@@ -72,14 +73,15 @@ contains
         call homes_of(p%all_b, p%home_b, p%home_b_node)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
           do s = 1, p%all_a%nseg
-            i = ct%own_of(p%all_a%segments(1, s))
+            i = owned_index(ct, p%all_a%segments(1, s))
             if (i > 0) ct%key_capable(i) = .true.
           end do
           allocate(p%own_slave(0))
         else
-          p%own_slave = pack([(n, n = 1, p%all_a%nnode)], ct%own_of(p%all_a%nodes) > 0)
+          p%own_slave = pack([(n, n = 1, p%all_a%nnode)], &
+              [(owned_index(ct, p%all_a%nodes(n)) > 0, n = 1, p%all_a%nnode)])
           do n = 1, size(p%own_slave)
-            ct%key_capable(ct%own_of(p%all_a%nodes(p%own_slave(n)))) = .true.
+            ct%key_capable(owned_index(ct, p%all_a%nodes(p%own_slave(n)))) = .true.
           end do
         end if
       end associate
@@ -128,6 +130,7 @@ contains
     integer(i8), intent(in) :: cycle
     type(selection_t), allocatable, intent(out) :: sel(:)
     integer(i8), allocatable :: request(:), wanted(:)
+    real(rk), allocatable :: mass(:, :, :)
     integer, allocatable :: fill(:)
     logical, allocatable :: in_set(:)
     type(rcb_t) :: rcb
@@ -224,17 +227,20 @@ contains
     ct%all_of = pack([(c, c = 1, ct%nall)], in_set)
     ct%ncn = size(ct%all_of)
     ct%ncn_max = max(ct%ncn_max, ct%ncn)
-    ct%mass = ct%all_mass(ct%all_of)
     if (allocated(ct%x)) deallocate(ct%x, ct%v, ct%f)
     allocate(ct%x(3, ct%ncn), ct%v(3, ct%ncn), ct%f(3, ct%ncn))
 
-    ! Migration plan: each owner learns which of its nodes each part needs.
+    ! Migration plan: the owners of the local set from the directory; each
+    ! owner learns which of its nodes each part needs.
+    if (allocated(ct%owner)) deallocate(ct%owner)
+    allocate(ct%owner(ct%ncn))
+    call owners_of(ct, ct%all_gid(ct%all_of), ct%owner)
     allocate(fill(nranks))
     if (allocated(ct%recv_count)) deallocate(ct%recv_count, ct%send_count)
     allocate(ct%recv_count(nranks), ct%send_count(nranks))
     ct%recv_count = 0
     do i = 1, ct%ncn
-      r = ct%all_owner(ct%all_of(i))
+      r = ct%owner(i)
       ct%recv_count(r + 1) = ct%recv_count(r + 1) + 1
     end do
     fill(1) = 0
@@ -244,7 +250,7 @@ contains
     if (allocated(ct%recv_local)) deallocate(ct%recv_local)
     allocate(ct%recv_local(ct%ncn), request(ct%ncn))
     do i = 1, ct%ncn
-      r = ct%all_owner(ct%all_of(i)) + 1
+      r = ct%owner(i) + 1
       fill(r) = fill(r) + 1
       ct%recv_local(fill(r)) = i
       request(fill(r)) = int(ct%all_of(i), i8)
@@ -255,8 +261,11 @@ contains
     ! (The receive buffer may be longer than what arrived.)
     allocate(ct%send_own(sum(ct%send_count)))
     do j = 1, size(ct%send_own)
-      ct%send_own(j) = ct%own_of(wanted(j))
+      ct%send_own(j) = owned_index(ct, int(wanted(j)))
     end do
+    ! The local set's masses from their owners.
+    call scatter_nodes(ct, reshape(ct%own_mass, [1, ct%nown, 1]), mass)
+    ct%mass = mass(1, :, 1)
   end subroutine contact_rebuild
 
   !> The local surfaces and pair lists of this part from the local set's
@@ -366,7 +375,7 @@ contains
             grow = p%margin + ext(k)
           else
             do j = 1, size(p%own_slave)
-              i = ct%own_of(p%all_a%nodes(p%own_slave(j)))
+              i = owned_index(ct, p%all_a%nodes(p%own_slave(j)))
               corners = 0.0_rk
               corners(:, 1) = x_old(:, ct%own_local(i))
               part = rcb_part_of(rcb, corners(:, 1), ct%all_gid(ct%own_contact(i)))
@@ -472,12 +481,27 @@ contains
     type(contact_t), intent(inout) :: ct
     type(selection_t), intent(in) :: sel(:)
     integer, intent(in) :: total !< pairs found by all parts
-    integer(i8), allocatable :: send(:), recv(:)
-    integer, allocatable :: count(:), recv_count(:), fill(:)
-    integer :: k, m, c, pass, nranks, r, j
+    integer(i8), allocatable :: send(:), recv(:), key(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), owner(:)
+    integer :: k, m, c, pass, nranks, r, j, n
     nranks = par_size()
     allocate(count(nranks), recv_count(nranks), fill(nranks))
+    ! The key nodes of this part's pairs and their owners (the directory).
+    n = 0
+    do k = 1, ct%npair
+      n = n + size(sel(k)%pairs, 2)
+    end do
+    allocate(key(n), owner(n))
+    n = 0
+    do k = 1, ct%npair
+      do m = 1, size(sel(k)%pairs, 2)
+        n = n + 1
+        key(n) = ct%all_gid(key_node(ct%pairs(k), sel(k)%pairs(:, m)))
+      end do
+    end do
+    call owners_of(ct, key, owner)
     do pass = 1, 2
+      n = 0
       if (pass == 1) then
         count = 0
       else
@@ -490,7 +514,8 @@ contains
       do k = 1, ct%npair
         do m = 1, size(sel(k)%pairs, 2)
           c = key_node(ct%pairs(k), sel(k)%pairs(:, m))
-          r = ct%all_owner(c) + 1
+          n = n + 1
+          r = owner(n) + 1
           if (pass == 1) then
             count(r) = count(r) + 1
           else
@@ -504,12 +529,100 @@ contains
     call par_exchange(send, count, recv, recv_count, ct%traffic)
     ct%key_weight = 0
     do j = 1, sum(recv_count)
-      m = ct%own_of(recv(j))
+      m = owned_index(ct, int(recv(j)))
       ct%key_weight(m) = ct%key_weight(m) + 1_i8
     end do
     ! No pairs anywhere: the key nodes, as before the first search.
     if (total == 0) ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
   end subroutine count_keys
+
+
+  !> The rank holding a contact node's entry in the owner directory.
+  pure integer function directory_rank(gid, nranks)
+    integer(i8), intent(in) :: gid !< global node id
+    integer, intent(in) :: nranks
+    directory_rank = int(modulo(gid, int(nranks, i8)))
+  end function directory_rank
+
+  !> The owner directory (contact_t%dir_gid, dir_owner): each rank sends the
+  !> global ids of its owned contact nodes to their directory ranks, which
+  !> keep them with the sender, by ascending id. Collective.
+  subroutine directory_build(ct)
+    type(contact_t), intent(inout) :: ct
+    integer(i8), allocatable :: send(:), recv(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), perm(:)
+    integer :: i, d, nranks, n, r, at
+    nranks = par_size()
+    allocate(count(nranks), recv_count(nranks), fill(nranks), send(ct%nown))
+    count = 0
+    do i = 1, ct%nown
+      d = directory_rank(ct%all_gid(ct%own_contact(i)), nranks) + 1
+      count(d) = count(d) + 1
+    end do
+    fill(1) = 0
+    do d = 2, nranks
+      fill(d) = fill(d - 1) + count(d - 1)
+    end do
+    do i = 1, ct%nown
+      d = directory_rank(ct%all_gid(ct%own_contact(i)), nranks) + 1
+      fill(d) = fill(d) + 1
+      send(fill(d)) = ct%all_gid(ct%own_contact(i))
+    end do
+    call par_exchange_counts(count, recv_count)
+    call par_exchange(send, count, recv, recv_count)
+    n = sum(recv_count)
+    if (allocated(ct%dir_gid)) deallocate(ct%dir_gid, ct%dir_owner)
+    allocate(ct%dir_owner(n))
+    ct%dir_gid = recv(:n)
+    at = 0
+    do r = 1, nranks
+      ct%dir_owner(at + 1:at + recv_count(r)) = r - 1
+      at = at + recv_count(r)
+    end do
+    call sort_order(ct%dir_gid, perm)
+    ct%dir_gid = ct%dir_gid(perm)
+    ct%dir_owner = ct%dir_owner(perm)
+  end subroutine directory_build
+
+  !> The mesh owners of contact nodes given by global id, from the owner
+  !> directory (a request to each directory rank and its answer). Collective.
+  subroutine owners_of(ct, gid, owner)
+    type(contact_t), intent(inout) :: ct
+    integer(i8), intent(in) :: gid(:)
+    integer, intent(out) :: owner(:) !< (size(gid)) mesh-owner rank of each
+    integer(i8), allocatable :: send(:), recv(:), answer(:), back(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), at(:)
+    integer :: i, d, nranks, j, e
+    nranks = par_size()
+    allocate(count(nranks), recv_count(nranks), fill(nranks), send(size(gid)), at(size(gid)))
+    count = 0
+    do i = 1, size(gid)
+      d = directory_rank(gid(i), nranks) + 1
+      count(d) = count(d) + 1
+    end do
+    fill(1) = 0
+    do d = 2, nranks
+      fill(d) = fill(d - 1) + count(d - 1)
+    end do
+    do i = 1, size(gid)
+      d = directory_rank(gid(i), nranks) + 1
+      fill(d) = fill(d) + 1
+      send(fill(d)) = gid(i)
+      at(fill(d)) = i
+    end do
+    call par_exchange_counts(count, recv_count, ct%traffic)
+    call par_exchange(send, count, recv, recv_count, ct%traffic)
+    allocate(answer(sum(recv_count)))
+    do j = 1, size(answer)
+      e = sorted_find(ct%dir_gid, recv(j))
+      if (e == 0) error stop 'contact owners_of: a node missing from the owner directory'
+      answer(j) = int(ct%dir_owner(e), i8)
+    end do
+    call par_exchange(answer, recv_count, back, count, ct%traffic)
+    do j = 1, size(gid)
+      owner(at(j)) = int(back(j))
+    end do
+  end subroutine owners_of
 
 
   !> x^n, v^n and f of the local set from the mesh owners; with full

@@ -13,7 +13,7 @@ module contact_records
   use parallel_exchange, only: par_exchange_partners
   implicit none
   private
-  public :: take, add_record, send_records, sum_records
+  public :: take, add_record, send_records, sum_records, position_of
 
   !> Contributions travelling from the parts to the mesh owners: ids
   !> (contact index, interface, key) and nv values each.
@@ -80,10 +80,13 @@ contains
   !> nearly sorted) bucket put them in order in linear time. One message per
   !> partner of the migration plan, ids and values together (values bit for
   !> bit), its length the count: no exchange of counts.
-  subroutine send_records(r, owner, own_of, nown, to, from, traffic)
+  subroutine send_records(r, local_set, owner, own_contact, nown, to, from, traffic)
     type(records_t), intent(inout) :: r
-    integer, intent(in) :: owner(:) !< (nall) mesh-owner rank of each contact node
-    integer, intent(in) :: own_of(:) !< (nall) owned index on this rank, 0 if not owned
+    !> (ncn) contact index of each node of this part's local set, ascending
+    integer, intent(in) :: local_set(:)
+    integer, intent(in) :: owner(:) !< (ncn) mesh-owner rank of each
+    !> (nown) contact index of each owned contact node of this rank, ascending
+    integer, intent(in) :: own_contact(:)
     integer, intent(in) :: nown !< owned contact nodes of this rank
     !> (nranks) the owners of this part's local set, which get a message
     logical, intent(in) :: to(:)
@@ -100,7 +103,7 @@ contains
     allocate(count(nranks), got(nranks), fill(nranks))
     count = 0
     do j = 1, r%n
-      o = owner(r%id(1, j)) + 1
+      o = owner_of(r%id(1, j)) + 1
       count(o) = count(o) + 1
     end do
     fill(1) = 0
@@ -123,7 +126,7 @@ contains
       call reserve_i8(r%irecv, 3 * r%n)
       call reserve_real(r%rsend, nv * r%n)
       do j = 1, r%n
-        o = owner(r%id(1, j)) + 1
+        o = owner_of(r%id(1, j)) + 1
         fill(o) = fill(o) + 1
         d = fill(o)
         r%irecv(3 * d - 2:3 * d) = r%id(:, j)
@@ -177,7 +180,8 @@ contains
     if (.not. allocated(r%node)) allocate(r%node(max(2 * nr, 64)))
     r%start = 0
     do j = 1, nr
-      r%node(j) = own_of(r%irecv(3 * j - 2))
+      r%node(j) = position_of(own_contact(:nown), int(r%irecv(3 * j - 2)))
+      if (r%node(j) == 0) error stop 'send_records: a record for a node this rank does not own'
       r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
     end do
     r%start(1) = 1
@@ -207,7 +211,38 @@ contains
         r%val(:, e + 1) = val
       end do
     end do
+
+  contains
+
+    !> Mesh owner of the node of a record (a node of the local set).
+    integer function owner_of(c) result(o)
+      integer(i8), intent(in) :: c !< contact index
+      integer :: l
+      l = position_of(local_set, int(c))
+      if (l == 0) error stop 'send_records: a record for a node outside the local set'
+      o = owner(l)
+    end function owner_of
+
   end subroutine send_records
+
+  !> Position of value in the ascending list, 0 if absent.
+  pure integer function position_of(list, value) result(i)
+    integer, intent(in) :: list(:)
+    integer, intent(in) :: value
+    integer :: lo, hi
+    lo = 1
+    hi = size(list)
+    do while (lo <= hi)
+      i = (lo + hi) / 2
+      if (list(i) == value) return
+      if (list(i) < value) then
+        lo = i + 1
+      else
+        hi = i - 1
+      end if
+    end do
+    i = 0
+  end function position_of
 
   !> Make a buffer hold at least n elements (grown by doubling, kept).
   subroutine reserve_i8(a, n)

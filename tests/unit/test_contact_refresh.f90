@@ -77,10 +77,11 @@ program test_contact_refresh
   live = .true.
   call contact_surface_refresh(ct, mesh, state%node_position, state%node_mass, live, context)
   same = ct%nall == before%nall
-  if (same) same = all(ct%all_gid == before%all_gid) .and. all(ct%all_mass == before%all_mass) &
-      .and. all(ct%all_owner == before%all_owner) .and. ct%nown == before%nown
+  if (same) same = all(ct%all_gid == before%all_gid) .and. ct%nown == before%nown
   if (same) same = all(ct%own_contact == before%own_contact) .and. &
-      all(ct%own_local == before%own_local)
+      all(ct%own_local == before%own_local) .and. all(ct%own_mass == before%own_mass) .and. &
+      all(ct%own_rigid .eqv. before%own_rigid) .and. all(ct%dir_gid == before%dir_gid) .and. &
+      all(ct%dir_owner == before%dir_owner)
   do i = 1, ct%npair
     if (.not. same) exit
     associate(p => ct%pairs(i), q => before%pairs(i))
