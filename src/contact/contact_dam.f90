@@ -210,7 +210,7 @@ contains
     call geometry_update(ct%x, p%b, p%gb)
     capture = capture_of(p, 2.0_rk * ct%speed, dt)
     call primary_pairs(ct%x, p%b, p%pairs, capture, 0.5_rk * p%size, m_%primary, &
-        p%offset(ct%all_of))
+        p%loffset)
     if (allocated(m_%rbf)) deallocate(m_%rbf, m_%ex_start, m_%excess, m_%recover)
     allocate(m_%rbf(4, size(m_%primary)), m_%ex_start(size(m_%primary) + 1), &
         m_%excess(size(m_%primary)), m_%recover(size(m_%primary)))
@@ -225,7 +225,7 @@ contains
         end do
         ! Penetration beyond the initial offset the deck kept and the
         ! allowance (the slave's nodal area against the master segment's).
-        m_%excess(q) = recovery_excess(-m_%primary(q)%gap - p%offset(ct%all_of(n)), &
+        m_%excess(q) = recovery_excess(-m_%primary(q)%gap - p%loffset(n), &
             recovery_allowance(p%spec%penetration_tolerance, gs%nodal_area(n), &
             sum(gm%area(:, m_%primary(q)%segment)), p%lsag_b(m_%primary(q)%segment)))
         if (m_%slave_normal) call use_slave_normal(p%a, gs, n, m_%primary(q)%normal)

@@ -322,7 +322,7 @@ contains
             pen = deepest
             ! The initial penetration the deck kept (contact_initial) is
             ! held, not pushed out.
-            kept = max(p%offset(ct%all_of(nodeh)), p%offset(ct%all_of(noded)))
+            kept = max(p%loffset(nodeh), p%loffset(noded))
             ! Deeper than half a segment: the far side of a body, not contact.
             ! The segment is the smaller of the two here, not the surfaces'
             ! median: a surface given by blocks takes in the large graded

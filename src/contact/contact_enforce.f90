@@ -187,7 +187,7 @@ contains
     integer :: k, m
 
     if (ct%npair == 0) return
-    allocate(raw_a(ct%npair), raw_b(ct%npair), old_offset(ct%nall, ct%npair))
+    allocate(raw_a(ct%npair), raw_b(ct%npair), old_offset(ct%nown, ct%npair))
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
         call p%method%sides(p%spec, side_a, side_b)
@@ -201,7 +201,9 @@ contains
       end associate
     end do
     if (.not. status%ok()) error stop 'contact_surface_refresh: the deck''s blocks changed'
-    call move_alloc(ct%all_gid, old_gid)
+    ! Each owned node's offset by global id (the same rank owns it after the
+    ! refresh).
+    old_gid = ct%all_gid(ct%own_contact)
     do k = 1, ct%npair
       old_offset(:, k) = ct%pairs(k)%offset
     end do
@@ -277,7 +279,8 @@ contains
     logical, intent(in), optional :: rigid(:)
     type(initial_offsets_t), intent(in), optional :: offsets(:)
     integer(i8), intent(in), optional :: old_gid(:)
-    real(rk), intent(in), optional :: old_offset(:, :) !< (size(old_gid), npair)
+    !> (size(old_gid), npair) offsets of old_gid, the owned nodes before a refresh
+    real(rk), intent(in), optional :: old_offset(:, :)
     integer(i8), allocatable :: all(:)
     real(rk), allocatable :: xc(:, :), flat(:)
     integer :: k, n, i, c, count_all
@@ -355,28 +358,29 @@ contains
     ct%gap_own = 0.0_rk
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        allocate(p%offset(ct%nall), p%own_in_a(ct%nown), p%fc_own(3, ct%nown))
+        allocate(p%offset(ct%nown), p%own_in_a(ct%nown), p%fc_own(3, ct%nown))
         p%offset = 0.0_rk
         p%fc_own = 0.0_rk
+        ! Per owned node: the larger of its initial offsets on sides a and b.
         if (present(offsets) .and. p%mirror_of == 0) then
-          do i = 1, p%all_a%nnode
-            p%offset(p%all_a%nodes(i)) = max(p%offset(p%all_a%nodes(i)), offsets(k)%a(i))
-          end do
-          do i = 1, p%all_b%nnode
-            p%offset(p%all_b%nodes(i)) = max(p%offset(p%all_b%nodes(i)), offsets(k)%b(i))
+          do i = 1, ct%nown
+            c = surface_node_index(p%all_a, ct%own_contact(i))
+            if (c > 0) p%offset(i) = max(p%offset(i), offsets(k)%a(c))
+            c = surface_node_index(p%all_b, ct%own_contact(i))
+            if (c > 0) p%offset(i) = max(p%offset(i), offsets(k)%b(c))
           end do
         end if
         ! A refresh keeps each node's offset (by global id; a node that joins
         ! has none); the caller then has them follow the new surfaces
         ! (contact_refresh_offsets).
         if (present(old_gid) .and. p%mirror_of == 0) then
-          do i = 1, ct%nall
-            c = find_key(old_gid, ct%all_gid(i))
+          do i = 1, ct%nown
+            c = find_key(old_gid, ct%all_gid(ct%own_contact(i)))
             if (c > 0) p%offset(i) = old_offset(c, k)
           end do
         end if
         ! A reverse pass keeps the initial penetration of its deck interface
-        ! (offsets are per contact node, so the same array).
+        ! (offsets are per owned contact node, so the same array).
         if (p%mirror_of > 0) p%offset = ct%pairs(p%mirror_of)%offset
         do i = 1, ct%nown
           p%own_in_a(i) = surface_node_index(p%all_a, ct%own_contact(i)) > 0
@@ -797,28 +801,22 @@ contains
     values = 0.0_rk
     do k = 1, ct%ndeck
       do i = 1, ct%nown
-        values(k, ct%own_local(i)) = ct%pairs(k)%offset(ct%own_contact(i))
+        values(k, ct%own_local(i)) = ct%pairs(k)%offset(i)
       end do
     end do
   end function contact_offset_values
 
   !> contact_offset_values' values back into the interfaces (after the
-  !> restart's refresh; the owners' values to every rank). Collective.
+  !> restart's refresh; each owned node's).
   subroutine contact_offset_restore(ct, values)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: values(:, :) !< (ndeck, nnode local)
-    real(rk), allocatable :: all(:)
     integer :: i, k
     if (ct%npair == 0 .or. size(values, 1) /= ct%ndeck) return
-    allocate(all(ct%nall))
     do k = 1, ct%ndeck
-      all = 0.0_rk
       do i = 1, ct%nown
-        all(ct%own_contact(i)) = values(k, ct%own_local(i))
+        ct%pairs(k)%offset(i) = values(k, ct%own_local(i))
       end do
-      ! (one owner each, zero elsewhere: the sums are the owners' values)
-      call par_sum_array(all)
-      ct%pairs(k)%offset = all
     end do
     do k = ct%ndeck + 1, ct%npair
       if (ct%pairs(k)%mirror_of > 0) ct%pairs(k)%offset = ct%pairs(ct%pairs(k)%mirror_of)%offset

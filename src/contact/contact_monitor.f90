@@ -406,16 +406,17 @@ contains
     integer(i8), allocatable :: gid_now(:)
     real(rk), allocatable :: depth_now(:, :)
     real(rk) :: before
-    integer :: k, i, c
+    integer :: k, i, c, o
     if (ct%npair == 0) return
     call contact_depths(ct, x, gid_now, depth_now)
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
-        do i = 1, ct%nall
+        do o = 1, ct%nown
+          i = ct%own_contact(o)
           c = sorted_find(gid, gid_now(i))
           before = 0.0_rk
           if (c > 0) before = depth(c, k)
-          p%offset(i) = max(p%offset(i) + depth_now(i, k) - before, 0.0_rk)
+          p%offset(o) = max(p%offset(o) + depth_now(i, k) - before, 0.0_rk)
         end do
       end associate
     end do
@@ -446,9 +447,9 @@ contains
         sel_a = owned_nodes(ct, p%all_a)
         sel_b = owned_nodes(ct, p%all_b)
         call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
-            p%spec%penetration_tolerance, p%offset(p%all_a%nodes), sel_a, ct%planes, ra)
+            p%spec%penetration_tolerance, owned_offsets(p%all_a), sel_a, ct%planes, ra)
         if (.not. p%self) call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
-            p%spec%penetration_tolerance, p%offset(p%all_b%nodes), sel_b, ct%planes, rb)
+            p%spec%penetration_tolerance, owned_offsets(p%all_b), sel_b, ct%planes, rb)
         worst = 0.0_rk
         sums = 0.0_rk
         unheld = 0
@@ -517,6 +518,20 @@ contains
     ct%audits = ct%audits + 1
 
   contains
+
+    !> The interface's offsets of the owned nodes of a surface, by surface
+    !> node (zero on the others, which the audit does not read).
+    function owned_offsets(surf) result(off)
+      type(contact_surface_t), intent(in) :: surf
+      real(rk), allocatable :: off(:)
+      integer :: n, o
+      allocate(off(surf%nnode))
+      off = 0.0_rk
+      do n = 1, surf%nnode
+        o = owned_index(ct, surf%nodes(n))
+        if (o > 0) off(n) = ct%pairs(k)%offset(o)
+      end do
+    end function owned_offsets
 
     !> Whether a penetrating node of surface b (owned node o) counts as held:
     !> a method that enforces surface b's nodes (DLM), or a reverse pass,

@@ -130,7 +130,7 @@ contains
     integer(i8), intent(in) :: cycle
     type(selection_t), allocatable, intent(out) :: sel(:)
     integer(i8), allocatable :: request(:), wanted(:)
-    real(rk), allocatable :: mass(:, :, :)
+    real(rk), allocatable :: mass(:, :, :), owned(:, :, :)
     integer, allocatable :: fill(:)
     logical, allocatable :: in_set(:)
     type(rcb_t) :: rcb
@@ -263,9 +263,17 @@ contains
     do j = 1, size(ct%send_own)
       ct%send_own(j) = owned_index(ct, int(wanted(j)))
     end do
-    ! The local set's masses from their owners.
-    call scatter_nodes(ct, reshape(ct%own_mass, [1, ct%nown, 1]), mass)
+    ! The local set's masses and each interface's offsets from their owners.
+    allocate(owned(1, ct%nown, 1 + ct%npair))
+    owned(1, :, 1) = ct%own_mass
+    do k = 1, ct%npair
+      owned(1, :, 1 + k) = ct%pairs(k)%offset
+    end do
+    call scatter_nodes(ct, owned, mass)
     ct%mass = mass(1, :, 1)
+    do k = 1, ct%npair
+      ct%pairs(k)%loffset = mass(1, :, 1 + k)
+    end do
   end subroutine contact_rebuild
 
   !> The local surfaces and pair lists of this part from the local set's

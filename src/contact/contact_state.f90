@@ -170,7 +170,10 @@ module contact_state
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     ! Audit and per-interface output (contact_monitor).
     real(rk) :: reach = 0.0_rk !< audit reach: twice the larger median segment size
-    real(rk), allocatable :: offset(:) !< (nall) initial penetration kept, per contact node
+    !> (nown) initial penetration kept, per owned contact node (the audit,
+    !> the restart); loffset: the same for the local set (ncn), from the
+    !> owners with the migration plan (the methods read it)
+    real(rk), allocatable :: offset(:), loffset(:)
     real(rk), allocatable :: sag_a(:), sag_b(:) !< faceting sagitta of all_a, all_b at t = 0
     real(rk), allocatable :: lsag_a(:), lsag_b(:) !< the same on the local surfaces a, b
     logical, allocatable :: own_in_a(:) !< (nown) owned node on surface a

@@ -54,7 +54,7 @@ program test_contact_refresh
   integer(i8), allocatable :: gid(:)
   logical, allocatable :: in_b(:)
   real(rk) :: expected, worst_a, worst_b
-  integer :: n, c
+  integer :: n
   logical, allocatable :: live(:)
   real(rk) :: ztop, zc
   integer :: ierr, z, i, stage, searches
@@ -120,12 +120,11 @@ program test_contact_refresh
   worst_b = -1.0_rk
   do i = 1, ct%nown
     n = ct%own_local(i)
-    c = ct%own_contact(i)
     if (.not. in_b(n) .and. abs(xm(3, n) - 0.75_rk) < 1.0e-12_rk) then
       expected = min(0.05_rk, 1.0_rk - xm(1, n), 1.0_rk - xm(2, n))
-      worst_a = max(worst_a, abs(ct%pairs(1)%offset(c) - expected))
+      worst_a = max(worst_a, abs(ct%pairs(1)%offset(i) - expected))
     else if (in_b(n) .and. abs(xm(3, n) - 0.7_rk) < 1.0e-12_rk) then
-      worst_b = max(worst_b, abs(ct%pairs(1)%offset(c)))
+      worst_b = max(worst_b, abs(ct%pairs(1)%offset(i)))
     end if
   end do
   worst_a = par_max(worst_a)
