@@ -253,7 +253,7 @@ contains
     type(contact_t), intent(inout) :: ct
     integer :: k
     deallocate(ct%own_contact, ct%own_local, ct%own_mass, ct%own_rigid, ct%dir_gid, &
-        ct%dir_owner, ct%fc, ct%gap_own, ct%key_capable, ct%xs)
+        ct%dir_owner, ct%fc, ct%gap_own, ct%key_capable)
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
         deallocate(p%was_active, p%offset, p%own_in_a, p%fc_own, p%own_slave)
@@ -344,6 +344,9 @@ contains
       call surface_renumbered(raw_b(k), ct%all_gid, xc, ct%pairs(k)%all_b)
       ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
           median_size(xc, ct%pairs(k)%all_b))
+      ! Edge flags are read on the parts' local surfaces only (made from the
+      ! local set's positions at each search), never on the whole ones.
+      deallocate(ct%pairs(k)%all_a%edge_convex, ct%pairs(k)%all_b%edge_convex)
     end do
     allocate(ct%fc(3, ct%nown))
     ct%fc = 0.0_rk
@@ -664,27 +667,24 @@ contains
     largest = par_max(ct%ncn_max)
     smallest = -par_max(-ct%ncn_max)
     loop = par_max(loop_seconds)
-    ! Memory: the static whole-surface data every rank holds (the contact
-    ! nodes' ids and search positions, the surfaces, each interface's
-    ! offsets and sagittas), this part's working data (local set, local
-    ! surfaces, geometry and pair caches), and the owners' share (owned
-    ! nodes, the owner directory).
-    whole = real(ct%nall, rk) * real(storage_size(ct%all_gid) + 3 * storage_size(1.0_rk), rk) / &
-        8.0_rk
-    local = real(ct%ncn_max, rk) * real(10 * storage_size(1.0_rk) + 2 * storage_size(1), rk) / &
-        8.0_rk
-    owned = real(ct%nown, rk) * real(2 * storage_size(1) + 6 * storage_size(1.0_rk) + &
-        storage_size(1_i8), rk) / 8.0_rk + real(size(ct%dir_gid), rk) * &
-        real(storage_size(1_i8) + storage_size(1), rk) / 8.0_rk
+    ! Memory (bytes): the static whole-surface data every rank holds (the
+    ! contact nodes' global ids, the surfaces and their sagittas), this
+    ! part's working data (local set: x, v, f, mass, offsets, owner,
+    ! contact index; local surfaces, geometry and pair caches), and the
+    ! owners' share (per owned node: indices, mass, rigid flag, key flag
+    ! and weight, force, gap; per interface its flags, offset and force;
+    ! the owner directory's entries).
+    whole = 8.0_rk * real(ct%nall, rk)
+    local = real(ct%ncn_max, rk) * (88.0_rk + 8.0_rk * real(ct%npair, rk))
+    owned = real(ct%nown, rk) * (64.0_rk + 40.0_rk * real(ct%npair, rk)) + &
+        12.0_rk * real(size(ct%dir_gid), rk)
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
         whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b) + &
-            real(ct%nall + p%all_a%nseg + p%all_b%nseg, rk) * real(storage_size(1.0_rk), rk) / &
-            8.0_rk
+            8.0_rk * real(p%all_a%nseg + p%all_b%nseg, rk)
         local = local + surface_bytes(p%a) + surface_bytes(p%b) + geometry_bytes(p%ga) + &
             geometry_bytes(p%gb)
         local = local + p%method%bytes()
-        owned = owned + real(ct%nown, rk) * real(4 * storage_size(1.0_rk), rk) / 8.0_rk
       end associate
     end do
     whole = par_max(whole)
@@ -731,8 +731,9 @@ contains
       b = 0.0_rk
       if (.not. allocated(surf%segments)) return
       b = real(size(surf%segments) + size(surf%nodes) + size(surf%node_start) + &
-          size(surf%node_segments) + size(surf%neighbours) + size(surf%edge_convex), rk) * 4.0_rk + &
+          size(surf%node_segments) + size(surf%neighbours), rk) * 4.0_rk + &
           real(size(surf%segment_id), rk) * 8.0_rk
+      if (allocated(surf%edge_convex)) b = b + real(size(surf%edge_convex), rk) * 4.0_rk
     end function surface_bytes
 
     real(rk) function geometry_bytes(g) result(b)

@@ -87,8 +87,6 @@ contains
       end associate
     end do
     ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
-    ! Filled by each search with what the part receives, read nowhere else.
-    allocate(ct%xs(3, ct%nall))
 
   contains
 
@@ -338,6 +336,9 @@ contains
     integer, parameter :: REC = 15
     integer, parameter :: KEY_SEGMENT = 1, CANDIDATE = 2, KEY_NODE = 3
     real(rk), allocatable :: send(:), recv(:)
+    !> (3, nall) the positions this part received, by contact index (only
+    !> those are read): for the search's duration
+    real(rk), allocatable :: xs(:, :)
     integer, allocatable :: count(:), recv_count(:), fill(:), parts(:), nlist(:, :)
     type(int_list_t), allocatable :: keys(:), cands(:)
     real(rk) :: ext(ct%npair), lo(3), hi(3), grow, slack, corners(3, 4)
@@ -413,7 +414,7 @@ contains
     call par_exchange(send, REC * count, recv, recv_count, ct%traffic)
 
     ! Keys and candidates of each interface, ascending; their positions.
-    allocate(nlist(2, ct%npair), keys(ct%npair), cands(ct%npair))
+    allocate(nlist(2, ct%npair), keys(ct%npair), cands(ct%npair), xs(3, ct%nall))
     nlist = 0
     n = sum(recv_count) / REC
     do pass = 1, 2
@@ -429,13 +430,13 @@ contains
           select case (kind)
           case (KEY_SEGMENT)
             keys(k)%v(nlist(1, k)) = idx
-            ct%xs(:, p%all_a%segments(:, idx)) = corners
+            xs(:, p%all_a%segments(:, idx)) = corners
           case (KEY_NODE)
             keys(k)%v(nlist(1, k)) = idx
-            ct%xs(:, p%all_a%nodes(idx)) = corners(:, 1)
+            xs(:, p%all_a%nodes(idx)) = corners(:, 1)
           case default
             cands(k)%v(nlist(2, k)) = idx
-            ct%xs(:, p%all_b%segments(:, idx)) = corners
+            xs(:, p%all_b%segments(:, idx)) = corners
           end select
         end associate
       end do
@@ -452,10 +453,10 @@ contains
         call sort_values(keys(k)%v)
         call sort_values(cands(k)%v)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
-          call segment_pair_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
+          call segment_pair_search(xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
               keys(k)%v, cands(k)%v)
         else
-          call bucket_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
+          call bucket_search(xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
               keys(k)%v, cands(k)%v)
           if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs, p%mirror_of > 0)
         end if

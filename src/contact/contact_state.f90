@@ -222,7 +222,6 @@ module contact_state
     logical, allocatable :: key_capable(:) !< (nown) the node can key pairs (DLM first
                                            !< corner of an a-segment, DAM slave node)
     integer(i8), allocatable :: key_weight(:) !< (nown) RCB weight: pairs keyed at the last search
-    real(rk), allocatable :: xs(:, :) !< (3, nall) positions the part's search received
     real(rk), allocatable :: fc(:, :) !< (3, nown) contact force of the stage
     ! This rank's RCB part.
     integer :: ncn = 0 !< nodes of the local set
