@@ -23,7 +23,7 @@ module contact_monitor
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use core_sort, only: sort_unique, sorted_find
   use contact_surface, only: contact_surface_t, surface_renumbered
-  use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
+  use contact_audit, only: audit_gaps, segment_sizes, node_tolerance, audit_reach
   use contact_state, only: contact_spec_t, interface_t, contact_t, contact_method_t, &
       initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN, owned_index
   use contact_factory, only: contact_method_new
@@ -57,18 +57,17 @@ contains
     logical, intent(in) :: selected(:) !< (own%nnode)
     real(rk), intent(in) :: planes(:, :) !< (4, n) symmetry planes (contact_audit)
     type(side_t), intent(out) :: side
-    real(rk), allocatable :: osz(:), osag(:), otn(:, :, :), otc(:, :)
-    real(rk), allocatable :: tsz(:), tsag(:), ttn(:, :, :), ttc(:, :)
+    real(rk), allocatable :: osz(:), tsz(:), tsag(:)
     real(rk) :: hmin
     integer :: i, e, n
     n = own%nnode
     allocate(side%gap(n), side%pen(n), side%tol(n), side%inward(3, n), side%hit(n))
+    ! (the target's sizes and sagittas from audit_gaps, which computes them;
+    ! of the own side only the sizes)
     call audit_gaps(x, own, other, self, reach, selected, side%gap, side%hit, side%inward, &
-        planes)
-    allocate(osz(own%nseg), osag(own%nseg), otn(3, 4, own%nseg), otc(3, own%nseg))
-    call segment_metrics(x, own, osz, osag, otn, otc)
-    allocate(tsz(other%nseg), tsag(other%nseg), ttn(3, 4, other%nseg), ttc(3, other%nseg))
-    call segment_metrics(x, other, tsz, tsag, ttn, ttc)
+        planes, tsz, tsag)
+    allocate(osz(own%nseg))
+    call segment_sizes(x, own, osz)
     do i = 1, n
       side%pen(i) = max(-side%gap(i) - offset(i), 0.0_rk)
       if (tol_fixed > 0.0_rk) then
