@@ -33,8 +33,9 @@ module contact_parts
   use core_kinds, only: rk, ik, i8
   use core_sort, only: sort_order, sort_unique, sorted_find
   use mesh_local, only: mesh_t
-  use contact_surface, only: contact_surface_t, surface_node_index, add_ring, local_surface, &
+  use contact_surface, only: contact_surface_t, surface_node_index, ring_of, local_surface, &
       surface_from_segments
+  use contact_records, only: position_of
   use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
   use contact_state, only: contact_t, interface_t, selection_t, PAIR_SEGMENTS, capture_of, &
       key_node, geometry_free, owned_index
@@ -135,12 +136,11 @@ contains
     real(rk), intent(in) :: x_old(:, :), dt
     integer(i8), intent(in) :: cycle
     type(selection_t), allocatable, intent(out) :: sel(:)
-    integer(i8), allocatable :: request(:), wanted(:)
+    integer(i8), allocatable :: request(:), wanted(:), nodes(:), list(:)
     real(rk), allocatable :: mass(:, :, :), owned(:, :, :)
     integer, allocatable :: fill(:)
-    logical, allocatable :: in_set(:)
     type(rcb_t) :: rcb
-    integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j, pass, mine, total
+    integer :: k, i, m, n, every, every_min, nranks, r, e, j, pass, mine, total
     integer, allocatable :: found(:, :)
     real(rk) :: balance
 
@@ -192,45 +192,41 @@ contains
       ct%balanced_searches = ct%balanced_searches + 1
     end if
 
-    ! The segments this part's pairs read.
-    allocate(in_set(ct%nall))
-    in_set = .false.
+    ! The segments this part's pairs read (lists, ascending).
+    nodes = [integer(i8) ::]
     do k = 1, ct%npair
-      associate(p => ct%pairs(k))
-        allocate(sel(k)%mark_a(p%all_a%nseg), sel(k)%mark_b(p%all_b%nseg))
-        sel(k)%mark_a = .false.
-        sel(k)%mark_b = .false.
+      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
-          do m = 1, size(sel(k)%pairs, 2)
-            sel(k)%mark_a(sel(k)%pairs(1, m)) = .true.
-            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
-          end do
           ! Nodal areas need every segment of every node.
-          call add_ring(p%all_a, sel(k)%mark_a)
-          call add_ring(p%all_b, sel(k)%mark_b)
+          sel(k)%seg_a = ring_of(p%all_a, pairs(1, :))
+          sel(k)%seg_b = ring_of(p%all_b, pairs(2, :))
         else
-          do m = 1, size(sel(k)%pairs, 2)
-            n = surface_node_index(p%all_a, int(sel(k)%pairs(1, m), ik))
-            do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
-              sel(k)%mark_a(p%all_a%node_segments(e)) = .true.
+          ! The slave nodes' segments; the master neighbourhood, and the
+          ! nodal areas of its nodes.
+          do pass = 1, 2
+            j = 0
+            do m = 1, size(pairs, 2)
+              n = surface_node_index(p%all_a, pairs(1, m))
+              do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
+                j = j + 1
+                if (pass == 2) list(j) = int(p%all_a%node_segments(e), i8)
+              end do
             end do
-            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
+            if (pass == 1) allocate(list(j))
           end do
-          ! The master neighbourhood, and the nodal areas of its nodes.
-          call add_ring(p%all_b, sel(k)%mark_b)
-          call add_ring(p%all_b, sel(k)%mark_b)
+          call sort_unique(list)
+          sel(k)%seg_a = int(list)
+          deallocate(list)
+          sel(k)%seg_b = ring_of(p%all_b, ring_of(p%all_b, pairs(2, :)))
         end if
-        do s = 1, p%all_a%nseg
-          if (sel(k)%mark_a(s)) in_set(p%all_a%segments(:, s)) = .true.
-        end do
-        do s = 1, p%all_b%nseg
-          if (sel(k)%mark_b(s)) in_set(p%all_b%segments(:, s)) = .true.
-        end do
+        nodes = [nodes, int(reshape(p%all_a%segments(:, sel(k)%seg_a), [4 * size(sel(k)%seg_a)]), &
+            i8), int(reshape(p%all_b%segments(:, sel(k)%seg_b), [4 * size(sel(k)%seg_b)]), i8)]
       end associate
     end do
 
     ! The local set, by ascending global id.
-    ct%all_of = pack([(c, c = 1, ct%nall)], in_set)
+    call sort_unique(nodes)
+    ct%all_of = int(nodes)
     ct%ncn = size(ct%all_of)
     ct%ncn_max = max(ct%ncn_max, ct%ncn)
     if (allocated(ct%x)) deallocate(ct%x, ct%v, ct%f)
@@ -287,36 +283,25 @@ contains
   subroutine contact_localize(ct, sel)
     type(contact_t), intent(inout) :: ct
     type(selection_t), intent(in) :: sel(:)
-    integer, allocatable :: l_of(:), seg_a(:), seg_b(:)
-    integer :: k, i, m
+    integer :: k, m
 
-    allocate(l_of(ct%nall))
-    l_of = 0
-    do i = 1, ct%ncn
-      l_of(ct%all_of(i)) = i
-    end do
     do k = 1, ct%npair
-      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
-        call local_surface(p%all_a, sel(k)%mark_a, l_of, ct%x, p%a, seg_a)
-        call local_surface(p%all_b, sel(k)%mark_b, l_of, ct%x, p%b, seg_b)
+      associate(p => ct%pairs(k), pairs => sel(k)%pairs, seg_a => sel(k)%seg_a, &
+          seg_b => sel(k)%seg_b)
+        call local_surface(p%all_a, seg_a, ct%all_of, ct%x, p%a)
+        call local_surface(p%all_b, seg_b, ct%all_of, ct%x, p%b)
         ! The sagittas of the local segments (the audit's, at t = 0).
-        if (allocated(p%lsag_a)) deallocate(p%lsag_a, p%lsag_b)
-        allocate(p%lsag_a(p%a%nseg), p%lsag_b(p%b%nseg))
-        do m = 1, p%all_a%nseg
-          if (seg_a(m) > 0) p%lsag_a(seg_a(m)) = p%sag_a(m)
-        end do
-        do m = 1, p%all_b%nseg
-          if (seg_b(m) > 0) p%lsag_b(seg_b(m)) = p%sag_b(m)
-        end do
+        p%lsag_a = p%sag_a(seg_a)
+        p%lsag_b = p%sag_b(seg_b)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
-          p%pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
+          p%pairs = reshape([(position_of(seg_a, pairs(1, m)), position_of(seg_b, pairs(2, m)), &
               m = 1, size(pairs, 2))], [2, size(pairs, 2)])
           ! The global order of a segment pair: the search lists them by (a, b).
           p%pair_key = [(int(pairs(1, m) - 1, i8) * int(p%all_b%nseg, i8) + &
               int(pairs(2, m), i8), m = 1, size(pairs, 2))]
         else
-          p%pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
-              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+          p%pairs = reshape([(position_of(ct%all_of, pairs(1, m)), position_of(seg_b, &
+              pairs(2, m)), m = 1, size(pairs, 2))], [2, size(pairs, 2)])
         end if
         call geometry_free(p%ga)
         call geometry_free(p%gb)

@@ -188,7 +188,8 @@ module contact_state
   !> whole surfaces a part reads (during a rebuild).
   type, public :: selection_t
     integer, allocatable :: pairs(:, :) !< (2, n) DLM: segments a, b; DAM: node, segment
-    logical, allocatable :: mark_a(:), mark_b(:) !< (nseg) segment in the local set
+    !> the segments of the whole surfaces a, b in the local set, ascending
+    integer, allocatable :: seg_a(:), seg_b(:)
   end type selection_t
 
   !> A list of integers (one per interface).
