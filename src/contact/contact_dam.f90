@@ -383,13 +383,13 @@ contains
           buf(2:4) = ct%f(:, m) * wm
           buf(5:7) = ct%mass(m) * ct%v(:, m) * wm
           buf(8:10) = 0.0_rk
-          call add_record(out, ct%all_of(n), k, base + int(2 * (e - m_%ex_start(q)), i8), buf)
+          call add_record(out, n, k, base + int(2 * (e - m_%ex_start(q)), i8), buf)
         end if
         buf(1) = ct%mass(n) * ws
         buf(2:4) = ct%f(:, n) * ws
         buf(5:7) = ct%mass(n) * ct%v(:, n) * ws
         buf(8:10) = s0 * m_%primary(q)%normal
-        call add_record(out, ct%all_of(m), k, base + int(2 * (e - m_%ex_start(q)) + 1, i8), buf)
+        call add_record(out, m, k, base + int(2 * (e - m_%ex_start(q)) + 1, i8), buf)
       end do
     end do
   end subroutine dam_exchange
@@ -453,12 +453,12 @@ contains
             target - dot_product(vm(:, n), nrm))
         vnew = vnew + dv
         do c = 1, 4
-          call add_record(out, ct%all_of(p%b%segments(c, m_%primary(q)%segment)), k, &
+          call add_record(out, p%b%segments(c, m_%primary(q)%segment), k, &
               int(ct%nall, i8) + 4_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), &
               -(ct%mass(n) * m_%rbf(c, q)) * dv)
         end do
       end if
-      call add_record(out, ct%all_of(n), k, int(ct%all_of(n), i8), vnew)
+      call add_record(out, n, k, int(ct%all_of(n), i8), vnew)
       ! Momentum (docs/contact.md, 6, step 4b): each master's matched change is
       ! the sum over its slaves of w m_s (v_s - v_m).u u (w the exchange
       ! weight, u the master's merged normal, v_m its matched velocity); the
@@ -499,7 +499,7 @@ contains
       call join_group(n, ct%mass(n))
       dv = -defect / sum(share(:ngroup))
       do c = 1, ngroup
-        call add_record(out, ct%all_of(group(c)), k, 5_i8 * int(ct%nall, i8) + &
+        call add_record(out, group(c), k, 5_i8 * int(ct%nall, i8) + &
             65536_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), share(c) * dv)
       end do
       sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &

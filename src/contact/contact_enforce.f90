@@ -550,8 +550,8 @@ contains
         do k = first, last
           associate(p => ct%pairs(k))
             if (r > p%method%rounds()) cycle
-            call send_records(out(k), ct%all_of, ct%owner, ct%own_contact, ct%nown, &
-                ct%recv_count > 0, ct%send_count > 0, ct%traffic)
+            call send_records(out(k), ct%owner, ct%owner_pos, ct%send_own, ct%send_count, &
+                ct%nown, ct%recv_count > 0, ct%send_count > 0, ct%traffic)
             allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
             call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
                 fck(:, :, k), has(:, k))

@@ -138,7 +138,7 @@ contains
     type(selection_t), allocatable, intent(out) :: sel(:)
     integer(i8), allocatable :: request(:), wanted(:), nodes(:), list(:)
     real(rk), allocatable :: mass(:, :, :), owned(:, :, :)
-    integer, allocatable :: fill(:)
+    integer, allocatable :: fill(:), start(:)
     type(rcb_t) :: rcb
     integer :: k, i, m, n, every, every_min, nranks, r, e, j, pass, mine, total
     integer, allocatable :: found(:, :)
@@ -249,11 +249,13 @@ contains
     do r = 2, nranks
       fill(r) = fill(r - 1) + ct%recv_count(r - 1)
     end do
-    if (allocated(ct%recv_local)) deallocate(ct%recv_local)
-    allocate(ct%recv_local(ct%ncn), request(ct%ncn))
+    if (allocated(ct%recv_local)) deallocate(ct%recv_local, ct%owner_pos)
+    allocate(ct%recv_local(ct%ncn), request(ct%ncn), ct%owner_pos(ct%ncn))
+    start = fill
     do i = 1, ct%ncn
       r = ct%owner(i) + 1
       fill(r) = fill(r) + 1
+      ct%owner_pos(i) = fill(r) - start(r)
       ct%recv_local(fill(r)) = i
       request(fill(r)) = int(ct%all_of(i), i8)
     end do
@@ -573,7 +575,7 @@ contains
           segs(cc, ii) = int(sorted_find(node, int(corner(cc, items(ii)), i8)), ik)
         end do
       end do
-      call surface_from_segments(segs, sid(items), surf=surf)
+      call surface_from_segments(segs, sid(items), surf=surf, adjacent=.false.)
     end subroutine surface_of
 
     !> Of items sorted by index, the first of each index.
@@ -730,6 +732,10 @@ contains
     integer, allocatable :: count(:), recv_count(:), fill(:), at(:)
     integer :: i, d, nranks, j, e
     nranks = par_size()
+    if (nranks == 1) then
+      owner = 0
+      return
+    end if
     allocate(count(nranks), recv_count(nranks), fill(nranks), send(size(gid)), at(size(gid)))
     count = 0
     do i = 1, size(gid)

@@ -229,6 +229,9 @@ module contact_state
     integer, allocatable :: all_of(:) !< (ncn) their contact index, ascending
     real(rk), allocatable :: mass(:) !< (ncn) from the owners' own_mass
     integer, allocatable :: owner(:) !< (ncn) mesh-owner rank of each
+    !> (ncn) the place of each among the nodes its owner sends this part
+    !> (from 1; the records name their nodes by it: contact_records)
+    integer, allocatable :: owner_pos(:)
     real(rk), allocatable :: x(:, :), v(:, :), f(:, :) !< (3, ncn) x^n, v^n, f of the stage
     ! Migration plan (rebuilt with the RCB).
     integer, allocatable :: recv_count(:) !< (nranks) local nodes sent by each owner

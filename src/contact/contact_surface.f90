@@ -210,12 +210,15 @@ contains
   end subroutine contact_surface_rebuild
 
   !> Build a surface from an explicit segment list (outward node order).
-  subroutine surface_from_segments(segments, segment_id, x, surf)
+  subroutine surface_from_segments(segments, segment_id, x, surf, adjacent)
     integer(ik), intent(in) :: segments(:, :) !< (4, nseg) global node ids
     integer(i8), intent(in) :: segment_id(:) !< (nseg) global ids, for tie-breaking
     !> (3, nnode) node positions (absent: no edge flags, every edge convex)
     real(rk), intent(in), optional :: x(:, :)
     type(contact_surface_t), intent(inout) :: surf
+    !> .false.: no neighbours across edges and no edge flags (a surface
+    !> that only the search reads)
+    logical, intent(in), optional :: adjacent
     integer, allocatable :: local(:, :), fill(:)
     integer(i8), allocatable :: ids(:)
     integer :: nseg, s, k, n
@@ -259,6 +262,9 @@ contains
         fill(n) = fill(n) + 1
       end do
     end do
+    if (present(adjacent)) then
+      if (.not. adjacent) return
+    end if
     ! Neighbours: the other segment holding both ends of edge k.
     allocate(surf%neighbours(4, nseg), surf%edge_convex(4, nseg))
     do s = 1, nseg
@@ -358,13 +364,17 @@ contains
     type(contact_surface_t), intent(in) :: surf
     integer, intent(in) :: segs(:)
     integer, allocatable :: ring(:)
-    integer(i8), allocatable :: grown(:)
+    integer(i8), allocatable :: grown(:), given(:)
     integer :: j, c, n, e, count, pass
+    ! (a pair list names a segment many times)
+    allocate(given(size(segs)))
+    given(:) = int(segs, i8)
+    call sort_unique(given)
     do pass = 1, 2
       count = 0
-      do j = 1, size(segs)
+      do j = 1, size(given)
         do c = 1, 4
-          n = surface_node_index(surf, surf%segments(c, segs(j)))
+          n = surface_node_index(surf, surf%segments(c, given(j)))
           do e = surf%node_start(n), surf%node_start(n + 1) - 1
             count = count + 1
             if (pass == 2) grown(count) = int(surf%node_segments(e), i8)
