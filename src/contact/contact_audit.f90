@@ -48,7 +48,7 @@ module contact_audit
   use mesh_geometry, only: cross
   implicit none
   private
-  public :: audit_gaps, segment_metrics, closest_on_triangle, node_tolerance
+  public :: audit_gaps, segment_metrics, segment_sizes, closest_on_triangle, node_tolerance
   public :: surface_sagitta, audit_reach
   public :: FEATURE_FACE, SIZE_FRACTION
 
@@ -156,29 +156,19 @@ contains
   !> surface of that curvature through the corners bulges from the flat
   !> facets by up to kappa L^2 / 8 at the centre, L the longer diagonal
   !> (exact for a sphere: h^2 / (4 R) for a square of side h).
-  pure subroutine segment_metrics(x, surf, size, sagitta, tri_normal, centre)
+  pure subroutine segment_metrics(x, surf, size, sagitta, centre, tri_normal)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: surf
     real(rk), intent(out) :: size(:), sagitta(:) !< (nseg)
-    real(rk), intent(out) :: tri_normal(:, :, :) !< (3, 4, nseg)
     real(rk), intent(out) :: centre(:, :) !< (3, nseg)
-    real(rk) :: p(3, 4), a(3), qn(3, surf%nseg), area, kappa, theta, dist, diag
+    !> (3, 4, nseg); absent: not kept (triangle_normals gives a segment's)
+    real(rk), intent(out), optional :: tri_normal(:, :, :)
+    real(rk) :: p(3, 4), qn(3, surf%nseg), kappa, theta, dist, diag, tn(3, 4)
     integer :: s, k, t
 
     do s = 1, surf%nseg
-      p = x(:, surf%segments(:, s))
-      centre(:, s) = 0.25_rk * (((p(:, 1) + p(:, 2)) + p(:, 3)) + p(:, 4))
-      area = 0.0_rk
-      qn(:, s) = 0.0_rk
-      do k = 1, 4
-        a = cross(p(:, mod(k, 4) + 1) - p(:, k), centre(:, s) - p(:, k))
-        area = area + 0.5_rk * norm2(a)
-        qn(:, s) = qn(:, s) + a
-        tri_normal(:, k, s) = 0.0_rk
-        if (norm2(a) > 0.0_rk) tri_normal(:, k, s) = a / norm2(a)
-      end do
-      if (norm2(qn(:, s)) > 0.0_rk) qn(:, s) = qn(:, s) / norm2(qn(:, s))
-      size(s) = sqrt(area)
+      call quad_shape(x(:, surf%segments(:, s)), centre(:, s), size(s), qn(:, s), tn)
+      if (present(tri_normal)) tri_normal(:, :, s) = tn
     end do
     do s = 1, surf%nseg
       p = x(:, surf%segments(:, s))
@@ -198,14 +188,58 @@ contains
     end do
   end subroutine segment_metrics
 
+  !> One segment's centre, size, unit normal (of the summed triangle areas)
+  !> and triangle unit normals (segment_metrics).
+  pure subroutine quad_shape(p, centre, size, normal, tri_normal)
+    real(rk), intent(in) :: p(3, 4) !< corners
+    real(rk), intent(out) :: centre(3), size, normal(3), tri_normal(3, 4)
+    real(rk) :: a(3), area
+    integer :: k
+    centre = 0.25_rk * (((p(:, 1) + p(:, 2)) + p(:, 3)) + p(:, 4))
+    area = 0.0_rk
+    normal = 0.0_rk
+    do k = 1, 4
+      a = cross(p(:, mod(k, 4) + 1) - p(:, k), centre - p(:, k))
+      area = area + 0.5_rk * norm2(a)
+      normal = normal + a
+      tri_normal(:, k) = 0.0_rk
+      if (norm2(a) > 0.0_rk) tri_normal(:, k) = a / norm2(a)
+    end do
+    if (norm2(normal) > 0.0_rk) normal = normal / norm2(normal)
+    size = sqrt(area)
+  end subroutine quad_shape
+
+  !> The unit normals of segment s's four triangles, as segment_metrics
+  !> gives them.
+  pure function triangle_normals(x, surf, s) result(tn)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    integer, intent(in) :: s
+    real(rk) :: tn(3, 4), centre(3), size, normal(3)
+    call quad_shape(x(:, surf%segments(:, s)), centre, size, normal, tn)
+  end function triangle_normals
+
+  !> The size of every segment of a surface, as segment_metrics gives it
+  !> (without its other per-segment arrays).
+  pure subroutine segment_sizes(x, surf, size)
+    real(rk), intent(in) :: x(:, :)
+    type(contact_surface_t), intent(in) :: surf
+    real(rk), intent(out) :: size(:) !< (nseg)
+    real(rk) :: centre(3), normal(3), tri_normal(3, 4)
+    integer :: s
+    do s = 1, surf%nseg
+      call quad_shape(x(:, surf%segments(:, s)), centre, size(s), normal, tri_normal)
+    end do
+  end subroutine segment_sizes
+
   !> Faceting sagitta of every segment of a surface (see segment_metrics).
   subroutine surface_sagitta(x, surf, sag)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: surf
     real(rk), allocatable, intent(out) :: sag(:)
-    real(rk), allocatable :: sz(:), tn(:, :, :), tc(:, :)
-    allocate(sag(surf%nseg), sz(surf%nseg), tn(3, 4, surf%nseg), tc(3, surf%nseg))
-    call segment_metrics(x, surf, sz, sag, tn, tc)
+    real(rk), allocatable :: sz(:), tc(:, :)
+    allocate(sag(surf%nseg), sz(surf%nseg), tc(3, surf%nseg))
+    call segment_metrics(x, surf, sz, sag, tc)
   end subroutine surface_sagitta
 
   !> Audit reach of an interface: REACH_SIZES times the larger of the two
@@ -218,11 +252,11 @@ contains
   contains
     real(rk) function median_size(surf) result(h)
       type(contact_surface_t), intent(in) :: surf
-      real(rk), allocatable :: sz(:), sag(:), tn(:, :, :), tc(:, :)
+      real(rk), allocatable :: sz(:)
       h = 0.0_rk
       if (surf%nseg == 0) return
-      allocate(sag(surf%nseg), sz(surf%nseg), tn(3, 4, surf%nseg), tc(3, surf%nseg))
-      call segment_metrics(x, surf, sz, sag, tn, tc)
+      allocate(sz(surf%nseg))
+      call segment_sizes(x, surf, sz)
       call sort_values(sz)
       h = sz((surf%nseg + 1) / 2)
     end function median_size
@@ -244,7 +278,8 @@ contains
   !> order in which a node's candidates are visited depend only on the
   !> surfaces and the node, so every rank finds the same closest point (an
   !> exact tie goes to the first visited).
-  subroutine audit_gaps(x, own, target, self, reach, selected, gap, hit, inward, planes)
+  subroutine audit_gaps(x, own, target, self, reach, selected, gap, hit, inward, planes, &
+      target_size, target_sagitta)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: own, target
     logical, intent(in) :: self
@@ -257,7 +292,10 @@ contains
     !> offset): a free edge of the target lying in one is no edge, the
     !> surface continuing as its mirror image
     real(rk), intent(in), optional :: planes(:, :)
-    real(rk), allocatable :: tsize(:), tsag(:), tn(:, :, :), tc(:, :)
+    !> the target's segment sizes and sagittas (segment_metrics), which the
+    !> caller's tolerances read (unallocated when no node was audited)
+    real(rk), allocatable, intent(out), optional :: target_size(:), target_sagitta(:)
+    real(rk), allocatable :: tsize(:), tsag(:), tc(:, :)
     integer, allocatable :: cell_start(:), cell_list(:), stamp(:), cand(:), ring(:)
     real(rk) :: lo(3), hi(3), cell, p(3), q(3), best_q(3), d2, best_d2, nrm(3), own_n(3), d(3)
     integer :: ncell(3), i, s, k, ncand, best_s, best_k, best_f, f, c1(3), c2(3), ix, iy, iz, &
@@ -271,9 +309,10 @@ contains
     hit = 0
     inward = 0.0_rk
     if (target%nseg == 0 .or. own%nnode == 0) return
-    allocate(tsize(target%nseg), tsag(target%nseg), tn(3, 4, target%nseg), &
-        tc(3, target%nseg))
-    call segment_metrics(x, target, tsize, tsag, tn, tc)
+    ! (triangle normals, read for the closest points' segments only, are
+    ! computed there: tnormal)
+    allocate(tsize(target%nseg), tsag(target%nseg), tc(3, target%nseg))
+    call segment_metrics(x, target, tsize, tsag, tc)
     call build_grid()
     allocate(stamp(target%nseg), cand(target%nseg), ring(target%nseg))
     stamp = 0
@@ -337,8 +376,18 @@ contains
         if (norm2(d) > 0.0_rk) inward(:, i) = -d / norm2(d)
       end if
     end do
+    if (present(target_size)) call move_alloc(tsize, target_size)
+    if (present(target_sagitta)) call move_alloc(tsag, target_sagitta)
 
   contains
+
+    !> Unit normal of triangle k of target segment s (segment_metrics').
+    pure function tnormal(k, s) result(n)
+      integer, intent(in) :: k, s
+      real(rk) :: n(3), tn(3, 4)
+      tn = triangle_normals(x, target, s)
+      n = tn(:, k)
+    end function tnormal
 
     subroutine build_grid()
       real(rk) :: blo(3), bhi(3)
@@ -425,30 +474,30 @@ contains
       kk = mod(k, 4) + 1
       select case (f)
       case (FEATURE_FACE)
-        n = tn(:, k, s)
+        n = tnormal(k, s)
       case (1)
         ! Segment edge k (P_k, P_k+1): the neighbour's triangle on it.
         t = target%neighbours(k, s)
-        n = tn(:, k, s)
+        n = tnormal(k, s)
         if (t == 0) then
           ! A free edge, unless it lies in a symmetry plane: then the mirror
           ! image's triangle is across it, n + R n, along the plane.
           free = .not. mirrored(target%segments(k, s), target%segments(kk, s), s, n)
         else
-          n = n + tn(:, edge_triangle(t, target%segments(kk, s), target%segments(k, s)), t)
+          n = n + tnormal(edge_triangle(t, target%segments(kk, s), target%segments(k, s)), t)
         end if
       case (2)
         ! Edge (P_k+1, C): shared with triangle k+1 of s.
-        n = tn(:, k, s) + tn(:, kk, s)
+        n = tnormal(k, s) + tnormal(kk, s)
       case (3)
         ! Edge (C, P_k): shared with triangle k-1 of s.
-        n = tn(:, k, s) + tn(:, km, s)
+        n = tnormal(k, s) + tnormal(km, s)
       case (6)
         ! The centre: the four triangles, each with its angle there.
         n = 0.0_rk
         do t = 1, 4
           n = n + corner_angle(tc(:, s), x(:, target%segments(t, s)), &
-              x(:, target%segments(mod(t, 4) + 1, s))) * tn(:, t, s)
+              x(:, target%segments(mod(t, 4) + 1, s))) * tnormal(t, s)
         end do
       case default
         ! A corner node of the segment.
@@ -525,9 +574,9 @@ contains
         cm = mod(c + 2, 4) + 1
         ! Triangle c = (P_c, P_c+1, C) and triangle c-1 = (P_c-1, P_c, C).
         n = n + corner_angle(x(:, vnode), x(:, target%segments(cp, s1)), tc(:, s1)) * &
-            tn(:, c, s1)
+            tnormal(c, s1)
         n = n + corner_angle(x(:, vnode), tc(:, s1), x(:, target%segments(cm, s1))) * &
-            tn(:, cm, s1)
+            tnormal(cm, s1)
         dummy = 0.0_rk
         if (target%neighbours(c, s1) == 0) then
           if (.not. mirrored(vnode, target%segments(cp, s1), s1, dummy, on)) free = .true.

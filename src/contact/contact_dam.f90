@@ -210,7 +210,7 @@ contains
     call geometry_update(ct%x, p%b, p%gb)
     capture = capture_of(p, 2.0_rk * ct%speed, dt)
     call primary_pairs(ct%x, p%b, p%pairs, capture, 0.5_rk * p%size, m_%primary, &
-        p%offset(ct%all_of))
+        p%loffset)
     if (allocated(m_%rbf)) deallocate(m_%rbf, m_%ex_start, m_%excess, m_%recover)
     allocate(m_%rbf(4, size(m_%primary)), m_%ex_start(size(m_%primary) + 1), &
         m_%excess(size(m_%primary)), m_%recover(size(m_%primary)))
@@ -225,7 +225,7 @@ contains
         end do
         ! Penetration beyond the initial offset the deck kept and the
         ! allowance (the slave's nodal area against the master segment's).
-        m_%excess(q) = recovery_excess(-m_%primary(q)%gap - p%offset(ct%all_of(n)), &
+        m_%excess(q) = recovery_excess(-m_%primary(q)%gap - p%loffset(n), &
             recovery_allowance(p%spec%penetration_tolerance, gs%nodal_area(n), &
             sum(gm%area(:, m_%primary(q)%segment)), p%lsag_b(m_%primary(q)%segment)))
         if (m_%slave_normal) call use_slave_normal(p%a, gs, n, m_%primary(q)%normal)
@@ -383,13 +383,13 @@ contains
           buf(2:4) = ct%f(:, m) * wm
           buf(5:7) = ct%mass(m) * ct%v(:, m) * wm
           buf(8:10) = 0.0_rk
-          call add_record(out, ct%all_of(n), k, base + int(2 * (e - m_%ex_start(q)), i8), buf)
+          call add_record(out, n, k, base + int(2 * (e - m_%ex_start(q)), i8), buf)
         end if
         buf(1) = ct%mass(n) * ws
         buf(2:4) = ct%f(:, n) * ws
         buf(5:7) = ct%mass(n) * ct%v(:, n) * ws
         buf(8:10) = s0 * m_%primary(q)%normal
-        call add_record(out, ct%all_of(m), k, base + int(2 * (e - m_%ex_start(q)) + 1, i8), buf)
+        call add_record(out, m, k, base + int(2 * (e - m_%ex_start(q)) + 1, i8), buf)
       end do
     end do
   end subroutine dam_exchange
@@ -459,12 +459,12 @@ contains
             target - dot_product(vm(:, n), nrm))
         vnew = vnew + dv
         do c = 1, 4
-          call add_record(out, ct%all_of(p%b%segments(c, m_%primary(q)%segment)), k, &
+          call add_record(out, p%b%segments(c, m_%primary(q)%segment), k, &
               int(ct%nall, i8) + 4_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), &
               -(ct%mass(n) * m_%rbf(c, q)) * dv)
         end do
       end if
-      call add_record(out, ct%all_of(n), k, int(ct%all_of(n), i8), vnew)
+      call add_record(out, n, k, int(ct%all_of(n), i8), vnew)
       ! Momentum (docs/contact.md, 6, step 4b): each master's matched change is
       ! the sum over its slaves of w m_s (v_s - v_m).u u (w the exchange
       ! weight, u the master's merged normal, v_m its matched velocity); the
@@ -505,7 +505,7 @@ contains
       call join_group(n, ct%mass(n))
       dv = -defect / sum(share(:ngroup))
       do c = 1, ngroup
-        call add_record(out, ct%all_of(group(c)), k, 5_i8 * int(ct%nall, i8) + &
+        call add_record(out, group(c), k, 5_i8 * int(ct%nall, i8) + &
             65536_i8 * int(ct%all_of(n), i8) + int(c - 1, i8), share(c) * dv)
       end do
       sum_force = sum_force + max(dot_product(ct%mass(n) * (vnew - ct%v(:, n)) / dt - &
@@ -569,7 +569,7 @@ contains
     touched = .false.
     do i = 1, ct%nown
       l = ct%own_local(i)
-      mass = ct%all_mass(ct%own_contact(i))
+      mass = ct%own_mass(i)
       mbar(i) = mass
       fbar(:, i) = force(:, l)
       pbar(:, i) = mass * v_old(:, l)
@@ -587,7 +587,7 @@ contains
     end do
     do i = 1, ct%nown
       l = ct%own_local(i)
-      mass = ct%all_mass(ct%own_contact(i))
+      mass = ct%own_mass(i)
       vmatch(1:3, i) = v_old(:, l) + dt * force(:, l) / mass
       vmatch(4:7, i) = 0.0_rk
       if (.not. touched(i)) cycle
@@ -620,7 +620,7 @@ contains
       if (r%id(3, j) > int(ct%nall, i8)) then
         ! Friction reaction on a master node (dam_put_back): a momentum,
         ! after the node's own put-back if it is a slave too (key order).
-        vfinal(:, i) = vfinal(:, i) + r%val(:, j) / ct%all_mass(ct%own_contact(i))
+        vfinal(:, i) = vfinal(:, i) + r%val(:, j) / ct%own_mass(i)
       else
         vfinal(:, i) = r%val(:, j)
       end if
@@ -628,10 +628,10 @@ contains
     end do
     do i = 1, ct%nown
       if (.not. (has(i) .or. touched(i))) cycle
-      if (ct%all_rigid(ct%own_contact(i))) cycle
+      if (ct%own_rigid(i)) cycle
       has(i) = .true.
       l = ct%own_local(i)
-      mass = ct%all_mass(ct%own_contact(i))
+      mass = ct%own_mass(i)
       fck(:, i) = mass * (vfinal(:, i) - v_old(:, l)) / dt - force(:, l)
       p%sums%dmom = p%sums%dmom + mass * (vfinal(:, i) - v_old(:, l)) - dt * force(:, l)
     end do

@@ -322,7 +322,7 @@ contains
             pen = deepest
             ! The initial penetration the deck kept (contact_initial) is
             ! held, not pushed out.
-            kept = max(p%offset(ct%all_of(nodeh)), p%offset(ct%all_of(noded)))
+            kept = max(p%loffset(nodeh), p%loffset(noded))
             ! Deeper than half a segment: the far side of a body, not contact.
             ! The segment is the smaller of the two here, not the surfaces'
             ! median: a surface given by blocks takes in the large graded
@@ -453,8 +453,8 @@ contains
           dot_product(ct%f(:, noded), nrm) * wd, w, dl%fp_pen(q), dl%fp_pen(q), dt, 0.0_rk, &
           fh, dl%fp_gated(q))
       if (.not. dl%fp_gated(q)) cycle
-      call add_record(out, ct%all_of(nodeh), k, dl%fp_key(q), [wh])
-      call add_record(out, ct%all_of(noded), k, dl%fp_key(q), [wd])
+      call add_record(out, nodeh, k, dl%fp_key(q), [wh])
+      call add_record(out, noded, k, dl%fp_key(q), [wd])
     end do
   end subroutine dlm_cover
 
@@ -543,20 +543,20 @@ contains
     ! Gauss-Seidel sweeps make the order global, one sum per node).
     if (p%single_part) then
       do i = 1, ct%ncn
-        if (any(fc(:, i) /= 0.0_rk)) call add_record(out, ct%all_of(i), k, 0_i8, fc(:, i))
+        if (any(fc(:, i) /= 0.0_rk)) call add_record(out, i, k, 0_i8, fc(:, i))
       end do
     else
       do q = 1, dl%nfp
         if (lambda(q) == 0.0_rk) cycle
         nrm = dl%fp_normal(:, q)
         if (allocated(ft)) then
-          call add_record(out, ct%all_of(dl%fp_node(1, q)), k, dl%fp_key(q), &
+          call add_record(out, dl%fp_node(1, q), k, dl%fp_key(q), &
               lambda(q) * nrm + ft(:, q))
-          call add_record(out, ct%all_of(dl%fp_node(2, q)), k, dl%fp_key(q), &
+          call add_record(out, dl%fp_node(2, q), k, dl%fp_key(q), &
               -(lambda(q) * nrm + ft(:, q)))
         else
-          call add_record(out, ct%all_of(dl%fp_node(1, q)), k, dl%fp_key(q), lambda(q) * nrm)
-          call add_record(out, ct%all_of(dl%fp_node(2, q)), k, dl%fp_key(q), -(lambda(q) * nrm))
+          call add_record(out, dl%fp_node(1, q), k, dl%fp_key(q), lambda(q) * nrm)
+          call add_record(out, dl%fp_node(2, q), k, dl%fp_key(q), -(lambda(q) * nrm))
         end if
       end do
     end if

@@ -63,7 +63,7 @@ module contact_enforce
   use contact_impact, only: impact_step_limit, IMPACT_FLOOR
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
-      scatter_nodes
+      scatter_nodes, directory_build
   use parallel_env, only: par_sum_array, par_min, par_max, par_max_array, par_rank, par_size
   implicit none
   private
@@ -187,7 +187,7 @@ contains
     integer :: k, m
 
     if (ct%npair == 0) return
-    allocate(raw_a(ct%npair), raw_b(ct%npair), old_offset(ct%nall, ct%npair))
+    allocate(raw_a(ct%npair), raw_b(ct%npair), old_offset(ct%nown, ct%npair))
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
         call p%method%sides(p%spec, side_a, side_b)
@@ -201,7 +201,9 @@ contains
       end associate
     end do
     if (.not. status%ok()) error stop 'contact_surface_refresh: the deck''s blocks changed'
-    call move_alloc(ct%all_gid, old_gid)
+    ! Each owned node's offset by global id (the same rank owns it after the
+    ! refresh).
+    old_gid = ct%all_gid(ct%own_contact)
     do k = 1, ct%npair
       old_offset(:, k) = ct%pairs(k)%offset
     end do
@@ -250,8 +252,8 @@ contains
   subroutine forget_index(ct)
     type(contact_t), intent(inout) :: ct
     integer :: k
-    deallocate(ct%own_contact, ct%own_local, ct%own_of, ct%fc, ct%gap_own, ct%key_capable, &
-        ct%xs)
+    deallocate(ct%own_contact, ct%own_local, ct%own_mass, ct%own_rigid, ct%dir_gid, &
+        ct%dir_owner, ct%fc, ct%gap_own, ct%key_capable)
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
         deallocate(p%was_active, p%offset, p%own_in_a, p%fc_own, p%own_slave)
@@ -277,9 +279,10 @@ contains
     logical, intent(in), optional :: rigid(:)
     type(initial_offsets_t), intent(in), optional :: offsets(:)
     integer(i8), intent(in), optional :: old_gid(:)
-    real(rk), intent(in), optional :: old_offset(:, :) !< (size(old_gid), npair)
+    !> (size(old_gid), npair) offsets of old_gid, the owned nodes before a refresh
+    real(rk), intent(in), optional :: old_offset(:, :)
     integer(i8), allocatable :: all(:)
-    real(rk), allocatable :: xc(:, :), packed(:, :), flat(:)
+    real(rk), allocatable :: xc(:, :), flat(:)
     integer :: k, n, i, c, count_all
 
     ! Contact nodes: every node of every surface, by global id.
@@ -311,41 +314,40 @@ contains
     end do
     ct%own_contact = ct%own_contact(:ct%nown)
     ct%own_local = ct%own_local(:ct%nown)
-    allocate(ct%own_of(ct%nall))
-    ct%own_of = 0
+    ! The owners' masses; a node whose motion is prescribed is rigid for the
+    ! contact: its mass is scaled by RIGID_MASS_FACTOR, so every exchange
+    ! and multiplier moves the other side only, and it takes no contact
+    ! force (the constraint's reaction is the boundary's work). The parts
+    ! get the masses of their local sets with the migration plan.
+    allocate(ct%own_mass(ct%nown), ct%own_rigid(ct%nown))
     do i = 1, ct%nown
-      ct%own_of(ct%own_contact(i)) = i
+      ct%own_mass(i) = node_mass(ct%own_local(i))
+      ct%own_rigid(i) = .false.
+      if (present(rigid)) ct%own_rigid(i) = rigid(ct%own_local(i))
     end do
-    allocate(packed(6, ct%nall))
-    packed = 0.0_rk
+    where (ct%own_rigid) ct%own_mass = RIGID_MASS_FACTOR * ct%own_mass
+    call directory_build(ct)
+    ! Every contact node's position at x, for the edge flags, sizes,
+    ! sagittas and reach below.
+    allocate(flat(3 * ct%nall))
+    flat = 0.0_rk
     do i = 1, ct%nown
-      packed(1, ct%own_contact(i)) = node_mass(ct%own_local(i))
-      packed(2, ct%own_contact(i)) = real(par_rank(), rk)
-      if (present(rigid)) then
-        if (rigid(ct%own_local(i))) packed(3, ct%own_contact(i)) = 1.0_rk
-      end if
-      packed(4:6, ct%own_contact(i)) = x(:, ct%own_local(i))
+      c = ct%own_contact(i)
+      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
     end do
-    allocate(flat(6 * ct%nall))
-    flat = reshape(packed, [6 * ct%nall])
     call par_sum_array(flat)
-    packed = reshape(flat, [6, ct%nall])
     ! (one owner each, zero elsewhere: the sums are the owners' values)
-    xc = packed(4:6, :)
+    xc = reshape(flat, [3, ct%nall])
+    deallocate(flat)
     do k = 1, ct%npair
       call surface_renumbered(raw_a(k), ct%all_gid, xc, ct%pairs(k)%all_a)
       call surface_renumbered(raw_b(k), ct%all_gid, xc, ct%pairs(k)%all_b)
       ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
           median_size(xc, ct%pairs(k)%all_b))
+      ! Edge flags are read on the parts' local surfaces only (made from the
+      ! local set's positions at each search), never on the whole ones.
+      deallocate(ct%pairs(k)%all_a%edge_convex, ct%pairs(k)%all_b%edge_convex)
     end do
-    ct%all_mass = packed(1, :)
-    ct%all_owner = nint(packed(2, :))
-    ! A node whose motion is prescribed is rigid for the contact: its mass is
-    ! scaled by RIGID_MASS_FACTOR, so every exchange and multiplier moves the
-    ! other side only, and it takes no contact force (the constraint's
-    ! reaction is the boundary's work).
-    ct%all_rigid = packed(3, :) > 0.5_rk
-    where (ct%all_rigid) ct%all_mass = RIGID_MASS_FACTOR * ct%all_mass
     allocate(ct%fc(3, ct%nown))
     ct%fc = 0.0_rk
     call segment_homes(ct, mesh)
@@ -359,28 +361,29 @@ contains
     ct%gap_own = 0.0_rk
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        allocate(p%offset(ct%nall), p%own_in_a(ct%nown), p%fc_own(3, ct%nown))
+        allocate(p%offset(ct%nown), p%own_in_a(ct%nown), p%fc_own(3, ct%nown))
         p%offset = 0.0_rk
         p%fc_own = 0.0_rk
+        ! Per owned node: the larger of its initial offsets on sides a and b.
         if (present(offsets) .and. p%mirror_of == 0) then
-          do i = 1, p%all_a%nnode
-            p%offset(p%all_a%nodes(i)) = max(p%offset(p%all_a%nodes(i)), offsets(k)%a(i))
-          end do
-          do i = 1, p%all_b%nnode
-            p%offset(p%all_b%nodes(i)) = max(p%offset(p%all_b%nodes(i)), offsets(k)%b(i))
+          do i = 1, ct%nown
+            c = surface_node_index(p%all_a, ct%own_contact(i))
+            if (c > 0) p%offset(i) = max(p%offset(i), offsets(k)%a(c))
+            c = surface_node_index(p%all_b, ct%own_contact(i))
+            if (c > 0) p%offset(i) = max(p%offset(i), offsets(k)%b(c))
           end do
         end if
         ! A refresh keeps each node's offset (by global id; a node that joins
         ! has none); the caller then has them follow the new surfaces
         ! (contact_refresh_offsets).
         if (present(old_gid) .and. p%mirror_of == 0) then
-          do i = 1, ct%nall
-            c = find_key(old_gid, ct%all_gid(i))
+          do i = 1, ct%nown
+            c = find_key(old_gid, ct%all_gid(ct%own_contact(i)))
             if (c > 0) p%offset(i) = old_offset(c, k)
           end do
         end if
         ! A reverse pass keeps the initial penetration of its deck interface
-        ! (offsets are per contact node, so the same array).
+        ! (offsets are per owned contact node, so the same array).
         if (p%mirror_of > 0) p%offset = ct%pairs(p%mirror_of)%offset
         do i = 1, ct%nown
           p%own_in_a(i) = surface_node_index(p%all_a, ct%own_contact(i)) > 0
@@ -547,8 +550,8 @@ contains
         do k = first, last
           associate(p => ct%pairs(k))
             if (r > p%method%rounds()) cycle
-            call send_records(out(k), ct%all_owner, ct%own_of, ct%nown, ct%recv_count > 0, &
-                ct%send_count > 0, ct%traffic)
+            call send_records(out(k), ct%owner, ct%owner_pos, ct%send_own, ct%send_count, &
+                ct%nown, ct%recv_count > 0, ct%send_count > 0, ct%traffic)
             allocate(values(max(p%method%owner_width(r), 0), ct%nown, 1))
             call p%method%owner_round(ct, p, r, out(k), v_old, force, dt, values(:, :, 1), &
                 fck(:, :, k), has(:, k))
@@ -560,7 +563,7 @@ contains
         call lap(ct%migrate_seconds)
       end do
       do i = 1, ct%nown
-        if (ct%all_rigid(ct%own_contact(i))) then
+        if (ct%own_rigid(i)) then
           ! Prescribed motion: the boundary holds the node (contact_setup).
           has(i, first:last) = .false.
           cycle
@@ -644,7 +647,7 @@ contains
   subroutine contact_report(ct, loop_seconds)
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: loop_seconds !< this rank's time loop without dumps
-    real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit
+    real(rk) :: search, enforce, migrate, total, loop, whole, local, wait, audit, owned
     real(rk) :: bytes, messages, exchanges, collectives, comm, per
     integer :: largest, smallest, k
     if (ct%npair == 0) return
@@ -664,14 +667,21 @@ contains
     largest = par_max(ct%ncn_max)
     smallest = -par_max(-ct%ncn_max)
     loop = par_max(loop_seconds)
-    ! Memory: the static whole-surface data every rank holds, and this part's
-    ! working data (local set, local surfaces, geometry and pair caches).
-    whole = real(ct%nall, rk) * real(storage_size(ct%all_gid) + storage_size(ct%all_mass) + &
-        2 * storage_size(ct%all_owner), rk) / 8.0_rk
-    local = real(ct%ncn_max, rk) * real(10 * storage_size(1.0_rk) + storage_size(1), rk) / 8.0_rk
+    ! Memory (bytes): the static whole-surface data every rank holds (the
+    ! contact nodes' global ids, the surfaces and their sagittas), this
+    ! part's working data (local set: x, v, f, mass, offsets, owner,
+    ! contact index; local surfaces, geometry and pair caches), and the
+    ! owners' share (per owned node: indices, mass, rigid flag, key flag
+    ! and weight, force, gap; per interface its flags, offset and force;
+    ! the owner directory's entries).
+    whole = 8.0_rk * real(ct%nall, rk)
+    local = real(ct%ncn_max, rk) * (88.0_rk + 8.0_rk * real(ct%npair, rk))
+    owned = real(ct%nown, rk) * (64.0_rk + 40.0_rk * real(ct%npair, rk)) + &
+        12.0_rk * real(size(ct%dir_gid), rk)
     do k = 1, ct%npair
       associate(p => ct%pairs(k))
-        whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b)
+        whole = whole + surface_bytes(p%all_a) + surface_bytes(p%all_b) + &
+            8.0_rk * real(p%all_a%nseg + p%all_b%nseg, rk)
         local = local + surface_bytes(p%a) + surface_bytes(p%b) + geometry_bytes(p%ga) + &
             geometry_bytes(p%gb)
         local = local + p%method%bytes()
@@ -679,6 +689,7 @@ contains
     end do
     whole = par_max(whole)
     local = par_max(local)
+    owned = par_max(owned)
     if (par_rank() /= 0) return
     write(output_unit, '(a,3(f10.3,a),f6.1,a)') 'impact3d: contact ', search, &
         ' s search and RCB, ', enforce, ' s enforcement, ', migrate, ' s migration (', &
@@ -708,9 +719,10 @@ contains
         'impact3d: contact pairs per part, largest / mean: ', &
         ct%balance_sum / real(ct%balanced_searches, rk), ' on average, ', ct%balance_worst, &
         ' at worst; ', ct%recuts, ' of ', ct%rebuilds, ' searches re-cut the RCB (load drift)'
-    write(output_unit, '(a,f10.3,a,f10.3,a)') 'impact3d: contact memory per rank ', &
+    write(output_unit, '(a,f10.3,a,f10.3,a,f10.3,a)') 'impact3d: contact memory per rank ', &
         local / 1.0e6_rk, ' MB working set (largest), ', whole / 1.0e6_rk, &
-        ' MB whole-surface topology (every rank)'
+        ' MB whole-surface topology (every rank), ', owned / 1.0e6_rk, &
+        ' MB owned nodes and owner directory (largest)'
 
   contains
 
@@ -719,8 +731,9 @@ contains
       b = 0.0_rk
       if (.not. allocated(surf%segments)) return
       b = real(size(surf%segments) + size(surf%nodes) + size(surf%node_start) + &
-          size(surf%node_segments) + size(surf%neighbours) + size(surf%edge_convex), rk) * 4.0_rk + &
+          size(surf%node_segments) + size(surf%neighbours), rk) * 4.0_rk + &
           real(size(surf%segment_id), rk) * 8.0_rk
+      if (allocated(surf%edge_convex)) b = b + real(size(surf%edge_convex), rk) * 4.0_rk
     end function surface_bytes
 
     real(rk) function geometry_bytes(g) result(b)
@@ -789,28 +802,22 @@ contains
     values = 0.0_rk
     do k = 1, ct%ndeck
       do i = 1, ct%nown
-        values(k, ct%own_local(i)) = ct%pairs(k)%offset(ct%own_contact(i))
+        values(k, ct%own_local(i)) = ct%pairs(k)%offset(i)
       end do
     end do
   end function contact_offset_values
 
   !> contact_offset_values' values back into the interfaces (after the
-  !> restart's refresh; the owners' values to every rank). Collective.
+  !> restart's refresh; each owned node's).
   subroutine contact_offset_restore(ct, values)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: values(:, :) !< (ndeck, nnode local)
-    real(rk), allocatable :: all(:)
     integer :: i, k
     if (ct%npair == 0 .or. size(values, 1) /= ct%ndeck) return
-    allocate(all(ct%nall))
     do k = 1, ct%ndeck
-      all = 0.0_rk
       do i = 1, ct%nown
-        all(ct%own_contact(i)) = values(k, ct%own_local(i))
+        ct%pairs(k)%offset(i) = values(k, ct%own_local(i))
       end do
-      ! (one owner each, zero elsewhere: the sums are the owners' values)
-      call par_sum_array(all)
-      ct%pairs(k)%offset = all
     end do
     do k = ct%ndeck + 1, ct%npair
       if (ct%pairs(k)%mirror_of > 0) ct%pairs(k)%offset = ct%pairs(ct%pairs(k)%mirror_of)%offset

@@ -23,9 +23,9 @@ module contact_monitor
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use core_sort, only: sort_unique, sorted_find
   use contact_surface, only: contact_surface_t, surface_renumbered
-  use contact_audit, only: audit_gaps, segment_metrics, node_tolerance, audit_reach
+  use contact_audit, only: audit_gaps, segment_sizes, node_tolerance, audit_reach
   use contact_state, only: contact_spec_t, interface_t, contact_t, contact_method_t, &
-      initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN
+      initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN, owned_index
   use contact_factory, only: contact_method_new
   use contact_sides, only: side_context_t, side_surface
   use mesh_local, only: mesh_t
@@ -57,18 +57,17 @@ contains
     logical, intent(in) :: selected(:) !< (own%nnode)
     real(rk), intent(in) :: planes(:, :) !< (4, n) symmetry planes (contact_audit)
     type(side_t), intent(out) :: side
-    real(rk), allocatable :: osz(:), osag(:), otn(:, :, :), otc(:, :)
-    real(rk), allocatable :: tsz(:), tsag(:), ttn(:, :, :), ttc(:, :)
+    real(rk), allocatable :: osz(:), tsz(:), tsag(:)
     real(rk) :: hmin
     integer :: i, e, n
     n = own%nnode
     allocate(side%gap(n), side%pen(n), side%tol(n), side%inward(3, n), side%hit(n))
+    ! (the target's sizes and sagittas from audit_gaps, which computes them;
+    ! of the own side only the sizes)
     call audit_gaps(x, own, other, self, reach, selected, side%gap, side%hit, side%inward, &
-        planes)
-    allocate(osz(own%nseg), osag(own%nseg), otn(3, 4, own%nseg), otc(3, own%nseg))
-    call segment_metrics(x, own, osz, osag, otn, otc)
-    allocate(tsz(other%nseg), tsag(other%nseg), ttn(3, 4, other%nseg), ttc(3, other%nseg))
-    call segment_metrics(x, other, tsz, tsag, ttn, ttc)
+        planes, tsz, tsag)
+    allocate(osz(own%nseg))
+    call segment_sizes(x, own, osz)
     do i = 1, n
       side%pen(i) = max(-side%gap(i) - offset(i), 0.0_rk)
       if (tol_fixed > 0.0_rk) then
@@ -337,7 +336,7 @@ contains
     integer :: i
     allocate(owned(surf%nnode))
     do i = 1, surf%nnode
-      owned(i) = ct%own_of(surf%nodes(i)) > 0
+      owned(i) = owned_index(ct, surf%nodes(i)) > 0
     end do
   end function owned_nodes
 
@@ -406,16 +405,17 @@ contains
     integer(i8), allocatable :: gid_now(:)
     real(rk), allocatable :: depth_now(:, :)
     real(rk) :: before
-    integer :: k, i, c
+    integer :: k, i, c, o
     if (ct%npair == 0) return
     call contact_depths(ct, x, gid_now, depth_now)
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
-        do i = 1, ct%nall
+        do o = 1, ct%nown
+          i = ct%own_contact(o)
           c = sorted_find(gid, gid_now(i))
           before = 0.0_rk
           if (c > 0) before = depth(c, k)
-          p%offset(i) = max(p%offset(i) + depth_now(i, k) - before, 0.0_rk)
+          p%offset(o) = max(p%offset(o) + depth_now(i, k) - before, 0.0_rk)
         end do
       end associate
     end do
@@ -446,9 +446,9 @@ contains
         sel_a = owned_nodes(ct, p%all_a)
         sel_b = owned_nodes(ct, p%all_b)
         call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
-            p%spec%penetration_tolerance, p%offset(p%all_a%nodes), sel_a, ct%planes, ra)
+            p%spec%penetration_tolerance, owned_offsets(p%all_a), sel_a, ct%planes, ra)
         if (.not. p%self) call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
-            p%spec%penetration_tolerance, p%offset(p%all_b%nodes), sel_b, ct%planes, rb)
+            p%spec%penetration_tolerance, owned_offsets(p%all_b), sel_b, ct%planes, rb)
         worst = 0.0_rk
         sums = 0.0_rk
         unheld = 0
@@ -457,7 +457,7 @@ contains
         do i = 1, p%all_a%nnode
           if (.not. sel_a(i)) cycle
           c = p%all_a%nodes(i)
-          o = ct%own_of(c)
+          o = owned_index(ct, c)
           ct%gap_own(o) = min(ct%gap_own(o), ra%gap(i))
           worst(1) = max(worst(1), ra%pen(i))
           if (ra%pen(i) > ra%tol(i)) then
@@ -470,7 +470,7 @@ contains
           do i = 1, p%all_b%nnode
             if (.not. sel_b(i)) cycle
             c = p%all_b%nodes(i)
-            o = ct%own_of(c)
+            o = owned_index(ct, c)
             ct%gap_own(o) = min(ct%gap_own(o), rb%gap(i))
             worst(2) = max(worst(2), rb%pen(i))
             if (rb%pen(i) > rb%tol(i)) then
@@ -517,6 +517,20 @@ contains
     ct%audits = ct%audits + 1
 
   contains
+
+    !> The interface's offsets of the owned nodes of a surface, by surface
+    !> node (zero on the others, which the audit does not read).
+    function owned_offsets(surf) result(off)
+      type(contact_surface_t), intent(in) :: surf
+      real(rk), allocatable :: off(:)
+      integer :: n, o
+      allocate(off(surf%nnode))
+      off = 0.0_rk
+      do n = 1, surf%nnode
+        o = owned_index(ct, surf%nodes(n))
+        if (o > 0) off(n) = ct%pairs(k)%offset(o)
+      end do
+    end function owned_offsets
 
     !> Whether a penetrating node of surface b (owned node o) counts as held:
     !> a method that enforces surface b's nodes (DLM), or a reverse pass,

@@ -31,23 +31,33 @@
 !> Nodes far from any pair belong to no local set and cost nothing.
 module contact_parts
   use core_kinds, only: rk, ik, i8
-  use core_sort, only: sort_order, sort_values
+  use core_sort, only: sort_order, sort_unique, sorted_find
   use mesh_local, only: mesh_t
-  use contact_surface, only: contact_surface_t, surface_node_index, add_ring, local_surface, &
-      keep_lower_side
+  use contact_surface, only: contact_surface_t, surface_node_index, ring_of, local_surface, &
+      surface_from_segments
+  use contact_records, only: position_of
   use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
-  use contact_state, only: contact_t, selection_t, int_list_t, PAIR_SEGMENTS, capture_of, &
-      key_node, geometry_free
+  use contact_state, only: contact_t, interface_t, selection_t, PAIR_SEGMENTS, capture_of, &
+      key_node, geometry_free, owned_index
   use parallel_env, only: par_max, par_size, par_allgather
   use parallel_exchange, only: par_exchange, par_exchange_counts
   use parallel_rcb, only: rcb_t, rcb_build, rcb_part_of, rcb_parts_of_box
   implicit none
   private
   public :: segment_homes, contact_rebuild, contact_localize, gather_nodes, scatter_nodes
+  public :: directory_build
 
   !> The RCB is cut again at a search whose pairs put more than this times
   !> the mean on one part (when there are at least 16 pairs per part).
   real(rk), parameter :: REBALANCE = 1.2_rk
+  !> An item of the search (search_on_parts): interface, kind, index (of a
+  !> whole surface's segment, or a node's contact index), face id, the
+  !> corners' contact indices (a node: its own, then zeros) and positions.
+  integer, parameter :: ITEM = 20
+  !> Kinds of items: a key segment (DLM), a candidate segment, a key node
+  !> (DAM) and a segment of a key node's ring (DAM).
+  integer, parameter :: ITEM_KEY_SEGMENT = 1, ITEM_CANDIDATE = 2, ITEM_KEY_NODE = 3, &
+      ITEM_RING = 4
 
 contains
 
@@ -72,21 +82,20 @@ contains
         call homes_of(p%all_b, p%home_b, p%home_b_node)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
           do s = 1, p%all_a%nseg
-            i = ct%own_of(p%all_a%segments(1, s))
+            i = owned_index(ct, p%all_a%segments(1, s))
             if (i > 0) ct%key_capable(i) = .true.
           end do
           allocate(p%own_slave(0))
         else
-          p%own_slave = pack([(n, n = 1, p%all_a%nnode)], ct%own_of(p%all_a%nodes) > 0)
+          p%own_slave = pack([(n, n = 1, p%all_a%nnode)], &
+              [(owned_index(ct, p%all_a%nodes(n)) > 0, n = 1, p%all_a%nnode)])
           do n = 1, size(p%own_slave)
-            ct%key_capable(ct%own_of(p%all_a%nodes(p%own_slave(n)))) = .true.
+            ct%key_capable(owned_index(ct, p%all_a%nodes(p%own_slave(n)))) = .true.
           end do
         end if
       end associate
     end do
     ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
-    ! Filled by each search with what the part receives, read nowhere else.
-    allocate(ct%xs(3, ct%nall))
 
   contains
 
@@ -127,11 +136,11 @@ contains
     real(rk), intent(in) :: x_old(:, :), dt
     integer(i8), intent(in) :: cycle
     type(selection_t), allocatable, intent(out) :: sel(:)
-    integer(i8), allocatable :: request(:), wanted(:)
-    integer, allocatable :: fill(:)
-    logical, allocatable :: in_set(:)
+    integer(i8), allocatable :: request(:), wanted(:), nodes(:), list(:)
+    real(rk), allocatable :: mass(:, :, :), owned(:, :, :)
+    integer, allocatable :: fill(:), start(:)
     type(rcb_t) :: rcb
-    integer :: k, i, c, m, n, every, every_min, nranks, r, s, e, j, pass, mine, total
+    integer :: k, i, m, n, every, every_min, nranks, r, e, j, pass, mine, total
     integer, allocatable :: found(:, :)
     real(rk) :: balance
 
@@ -183,69 +192,70 @@ contains
       ct%balanced_searches = ct%balanced_searches + 1
     end if
 
-    ! The segments this part's pairs read.
-    allocate(in_set(ct%nall))
-    in_set = .false.
+    ! The segments this part's pairs read (lists, ascending).
+    nodes = [integer(i8) ::]
     do k = 1, ct%npair
-      associate(p => ct%pairs(k))
-        allocate(sel(k)%mark_a(p%all_a%nseg), sel(k)%mark_b(p%all_b%nseg))
-        sel(k)%mark_a = .false.
-        sel(k)%mark_b = .false.
+      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
-          do m = 1, size(sel(k)%pairs, 2)
-            sel(k)%mark_a(sel(k)%pairs(1, m)) = .true.
-            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
-          end do
           ! Nodal areas need every segment of every node.
-          call add_ring(p%all_a, sel(k)%mark_a)
-          call add_ring(p%all_b, sel(k)%mark_b)
+          sel(k)%seg_a = ring_of(p%all_a, pairs(1, :))
+          sel(k)%seg_b = ring_of(p%all_b, pairs(2, :))
         else
-          do m = 1, size(sel(k)%pairs, 2)
-            n = surface_node_index(p%all_a, int(sel(k)%pairs(1, m), ik))
-            do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
-              sel(k)%mark_a(p%all_a%node_segments(e)) = .true.
+          ! The slave nodes' segments; the master neighbourhood, and the
+          ! nodal areas of its nodes.
+          do pass = 1, 2
+            j = 0
+            do m = 1, size(pairs, 2)
+              n = surface_node_index(p%all_a, pairs(1, m))
+              do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
+                j = j + 1
+                if (pass == 2) list(j) = int(p%all_a%node_segments(e), i8)
+              end do
             end do
-            sel(k)%mark_b(sel(k)%pairs(2, m)) = .true.
+            if (pass == 1) allocate(list(j))
           end do
-          ! The master neighbourhood, and the nodal areas of its nodes.
-          call add_ring(p%all_b, sel(k)%mark_b)
-          call add_ring(p%all_b, sel(k)%mark_b)
+          call sort_unique(list)
+          sel(k)%seg_a = int(list)
+          deallocate(list)
+          sel(k)%seg_b = ring_of(p%all_b, ring_of(p%all_b, pairs(2, :)))
         end if
-        do s = 1, p%all_a%nseg
-          if (sel(k)%mark_a(s)) in_set(p%all_a%segments(:, s)) = .true.
-        end do
-        do s = 1, p%all_b%nseg
-          if (sel(k)%mark_b(s)) in_set(p%all_b%segments(:, s)) = .true.
-        end do
+        nodes = [nodes, int(reshape(p%all_a%segments(:, sel(k)%seg_a), [4 * size(sel(k)%seg_a)]), &
+            i8), int(reshape(p%all_b%segments(:, sel(k)%seg_b), [4 * size(sel(k)%seg_b)]), i8)]
       end associate
     end do
 
     ! The local set, by ascending global id.
-    ct%all_of = pack([(c, c = 1, ct%nall)], in_set)
+    call sort_unique(nodes)
+    ct%all_of = int(nodes)
     ct%ncn = size(ct%all_of)
     ct%ncn_max = max(ct%ncn_max, ct%ncn)
-    ct%mass = ct%all_mass(ct%all_of)
     if (allocated(ct%x)) deallocate(ct%x, ct%v, ct%f)
     allocate(ct%x(3, ct%ncn), ct%v(3, ct%ncn), ct%f(3, ct%ncn))
 
-    ! Migration plan: each owner learns which of its nodes each part needs.
+    ! Migration plan: the owners of the local set from the directory; each
+    ! owner learns which of its nodes each part needs.
+    if (allocated(ct%owner)) deallocate(ct%owner)
+    allocate(ct%owner(ct%ncn))
+    call owners_of(ct, ct%all_gid(ct%all_of), ct%owner)
     allocate(fill(nranks))
     if (allocated(ct%recv_count)) deallocate(ct%recv_count, ct%send_count)
     allocate(ct%recv_count(nranks), ct%send_count(nranks))
     ct%recv_count = 0
     do i = 1, ct%ncn
-      r = ct%all_owner(ct%all_of(i))
+      r = ct%owner(i)
       ct%recv_count(r + 1) = ct%recv_count(r + 1) + 1
     end do
     fill(1) = 0
     do r = 2, nranks
       fill(r) = fill(r - 1) + ct%recv_count(r - 1)
     end do
-    if (allocated(ct%recv_local)) deallocate(ct%recv_local)
-    allocate(ct%recv_local(ct%ncn), request(ct%ncn))
+    if (allocated(ct%recv_local)) deallocate(ct%recv_local, ct%owner_pos)
+    allocate(ct%recv_local(ct%ncn), request(ct%ncn), ct%owner_pos(ct%ncn))
+    start = fill
     do i = 1, ct%ncn
-      r = ct%all_owner(ct%all_of(i)) + 1
+      r = ct%owner(i) + 1
       fill(r) = fill(r) + 1
+      ct%owner_pos(i) = fill(r) - start(r)
       ct%recv_local(fill(r)) = i
       request(fill(r)) = int(ct%all_of(i), i8)
     end do
@@ -255,7 +265,18 @@ contains
     ! (The receive buffer may be longer than what arrived.)
     allocate(ct%send_own(sum(ct%send_count)))
     do j = 1, size(ct%send_own)
-      ct%send_own(j) = ct%own_of(wanted(j))
+      ct%send_own(j) = owned_index(ct, int(wanted(j)))
+    end do
+    ! The local set's masses and each interface's offsets from their owners.
+    allocate(owned(1, ct%nown, 1 + ct%npair))
+    owned(1, :, 1) = ct%own_mass
+    do k = 1, ct%npair
+      owned(1, :, 1 + k) = ct%pairs(k)%offset
+    end do
+    call scatter_nodes(ct, owned, mass)
+    ct%mass = mass(1, :, 1)
+    do k = 1, ct%npair
+      ct%pairs(k)%loffset = mass(1, :, 1 + k)
     end do
   end subroutine contact_rebuild
 
@@ -264,36 +285,25 @@ contains
   subroutine contact_localize(ct, sel)
     type(contact_t), intent(inout) :: ct
     type(selection_t), intent(in) :: sel(:)
-    integer, allocatable :: l_of(:), seg_a(:), seg_b(:)
-    integer :: k, i, m
+    integer :: k, m
 
-    allocate(l_of(ct%nall))
-    l_of = 0
-    do i = 1, ct%ncn
-      l_of(ct%all_of(i)) = i
-    end do
     do k = 1, ct%npair
-      associate(p => ct%pairs(k), pairs => sel(k)%pairs)
-        call local_surface(p%all_a, sel(k)%mark_a, l_of, ct%x, p%a, seg_a)
-        call local_surface(p%all_b, sel(k)%mark_b, l_of, ct%x, p%b, seg_b)
+      associate(p => ct%pairs(k), pairs => sel(k)%pairs, seg_a => sel(k)%seg_a, &
+          seg_b => sel(k)%seg_b)
+        call local_surface(p%all_a, seg_a, ct%all_of, ct%x, p%a)
+        call local_surface(p%all_b, seg_b, ct%all_of, ct%x, p%b)
         ! The sagittas of the local segments (the audit's, at t = 0).
-        if (allocated(p%lsag_a)) deallocate(p%lsag_a, p%lsag_b)
-        allocate(p%lsag_a(p%a%nseg), p%lsag_b(p%b%nseg))
-        do m = 1, p%all_a%nseg
-          if (seg_a(m) > 0) p%lsag_a(seg_a(m)) = p%sag_a(m)
-        end do
-        do m = 1, p%all_b%nseg
-          if (seg_b(m) > 0) p%lsag_b(seg_b(m)) = p%sag_b(m)
-        end do
+        p%lsag_a = p%sag_a(seg_a)
+        p%lsag_b = p%sag_b(seg_b)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
-          p%pairs = reshape([(seg_a(pairs(1, m)), seg_b(pairs(2, m)), &
+          p%pairs = reshape([(position_of(seg_a, pairs(1, m)), position_of(seg_b, pairs(2, m)), &
               m = 1, size(pairs, 2))], [2, size(pairs, 2)])
           ! The global order of a segment pair: the search lists them by (a, b).
           p%pair_key = [(int(pairs(1, m) - 1, i8) * int(p%all_b%nseg, i8) + &
               int(pairs(2, m), i8), m = 1, size(pairs, 2))]
         else
-          p%pairs = reshape([(l_of(pairs(1, m)), seg_b(pairs(2, m)), &
-              m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+          p%pairs = reshape([(position_of(ct%all_of, pairs(1, m)), position_of(seg_b, &
+              pairs(2, m)), m = 1, size(pairs, 2))], [2, size(pairs, 2)])
         end if
         call geometry_free(p%ga)
         call geometry_free(p%gb)
@@ -303,30 +313,30 @@ contains
   end subroutine contact_localize
 
   !> The global search, on the parts. Segment homes (the ranks owning the
-  !> segments' zones) send each segment with its corner positions x^n to the
-  !> parts it may reach; a part searches its keys (DLM: the a-segments whose
-  !> first node is in its region; DAM: the slave nodes in its region) against
-  !> the segments received. A DAM pair (n, b) needs n inside b's territory, so
-  !> b goes to every part whose region meets the territory; a DLM pair (a, b)
-  !> needs a's box to meet b's territory, and a's box lies within the largest
-  !> a-segment extent of its first node, so b goes to the parts its territory
-  !> grown by that extent meets. Each part finds exactly its pairs of the
-  !> whole search, in the same order. Collective.
+  !> segments' zones) send each segment, with its face id and its corners'
+  !> contact indices and positions x^n, to the parts it may reach; a part
+  !> searches its keys (DLM: the a-segments whose first node is in its
+  !> region; DAM: the slave nodes in its region, each with the segments of
+  !> side a around it) against the segments received. A DAM pair (n, b)
+  !> needs n inside b's territory, so b goes to every part whose region
+  !> meets the territory; a DLM pair (a, b) needs a's box to meet b's
+  !> territory, and a's box lies within the largest a-segment extent of its
+  !> first node, so b goes to the parts its territory grown by that extent
+  !> meets. A part reads nothing but what it received (search_received).
+  !> Each part finds exactly its pairs of the whole search, in the same
+  !> order. Collective.
   subroutine search_on_parts(ct, x_old, rcb, sel)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x_old(:, :)
     type(rcb_t), intent(in) :: rcb
     type(selection_t), intent(inout) :: sel(:)
-    !> A shipped item: interface, kind, index, four corners (a node: one).
-    integer, parameter :: REC = 15
-    integer, parameter :: KEY_SEGMENT = 1, CANDIDATE = 2, KEY_NODE = 3
     real(rk), allocatable :: send(:), recv(:)
-    integer, allocatable :: count(:), recv_count(:), fill(:), parts(:), nlist(:, :)
-    type(int_list_t), allocatable :: keys(:), cands(:)
-    real(rk) :: ext(ct%npair), lo(3), hi(3), grow, slack, corners(3, 4)
-    integer :: k, j, s, i, n, part, np, pass, nranks, q, kind, idx
+    integer, allocatable :: count(:), recv_count(:), fill(:), parts(:)
+    real(rk) :: ext(ct%npair), lo(3), hi(3), grow, slack, corners(3, 4), none(3, 4)
+    integer :: k, j, s, i, n, part, np, pass, nranks, q, e, t
 
     nranks = par_size()
+    none = 0.0_rk
     allocate(count(nranks), recv_count(nranks), fill(nranks), parts(nranks))
     ! The largest a-segment extent of each DLM interface.
     do k = 1, ct%npair
@@ -347,7 +357,7 @@ contains
       if (pass == 1) then
         count = 0
       else
-        allocate(send(REC * sum(count)))
+        allocate(send(ITEM * sum(count)))
         fill(1) = 0
         do part = 2, nranks
           fill(part) = fill(part - 1) + count(part - 1)
@@ -361,23 +371,35 @@ contains
               part = 0
               if (.not. p%single_part) part = rcb_part_of(rcb, x_old(:, p%home_a_node(1, j)), &
                   ct%all_gid(p%all_a%segments(1, s)))
-              call emit(part, k, KEY_SEGMENT, s, x_old(:, p%home_a_node(:, j)))
+              call emit(part, k, ITEM_KEY_SEGMENT, s, p%all_a%segment_id(s), &
+                  int(p%all_a%segments(:, s)), x_old(:, p%home_a_node(:, j)))
             end do
             grow = p%margin + ext(k)
           else
             do j = 1, size(p%own_slave)
-              i = ct%own_of(p%all_a%nodes(p%own_slave(j)))
+              n = p%own_slave(j)
+              i = owned_index(ct, int(p%all_a%nodes(n)))
               corners = 0.0_rk
               corners(:, 1) = x_old(:, ct%own_local(i))
               part = rcb_part_of(rcb, corners(:, 1), ct%all_gid(ct%own_contact(i)))
-              call emit(part, k, KEY_NODE, p%own_slave(j), corners)
+              call emit(part, k, ITEM_KEY_NODE, ct%own_contact(i), 0_i8, &
+                  [ct%own_contact(i), 0, 0, 0], corners)
+              ! The slave node's segments (its ring: the self-contact
+              ! exclusions, the lower-side rule, its nodal area).
+              do e = p%all_a%node_start(n), p%all_a%node_start(n + 1) - 1
+                t = p%all_a%node_segments(e)
+                call emit(part, k, ITEM_RING, t, p%all_a%segment_id(t), &
+                    int(p%all_a%segments(:, t)), none)
+              end do
             end do
             grow = p%margin
           end if
           do j = 1, size(p%home_b)
+            s = p%home_b(j)
             corners = x_old(:, p%home_b_node(:, j))
             if (p%single_part) then
-              call emit(0, k, CANDIDATE, p%home_b(j), corners)
+              call emit(0, k, ITEM_CANDIDATE, s, p%all_b%segment_id(s), &
+                  int(p%all_b%segments(:, s)), corners)
               cycle
             end if
             ! Conservative by a few roundings: more candidates change nothing.
@@ -386,69 +408,26 @@ contains
             hi = maxval(corners, dim=2) + grow + slack
             call rcb_parts_of_box(rcb, lo, hi, parts, np)
             do q = 1, np
-              call emit(parts(q), k, CANDIDATE, p%home_b(j), corners)
+              call emit(parts(q), k, ITEM_CANDIDATE, s, p%all_b%segment_id(s), &
+                  int(p%all_b%segments(:, s)), corners)
             end do
           end do
         end associate
       end do
     end do
-    call par_exchange_counts(REC * count, recv_count, ct%traffic)
-    call par_exchange(send, REC * count, recv, recv_count, ct%traffic)
-
-    ! Keys and candidates of each interface, ascending; their positions.
-    allocate(nlist(2, ct%npair), keys(ct%npair), cands(ct%npair))
-    nlist = 0
-    n = sum(recv_count) / REC
-    do pass = 1, 2
-      do j = 1, n
-        k = nint(recv(REC * (j - 1) + 1))
-        kind = nint(recv(REC * (j - 1) + 2))
-        idx = nint(recv(REC * (j - 1) + 3))
-        q = merge(2, 1, kind == CANDIDATE)
-        nlist(q, k) = nlist(q, k) + 1
-        if (pass == 1) cycle
-        corners = reshape(recv(REC * (j - 1) + 4:REC * j), [3, 4])
-        associate(p => ct%pairs(k))
-          select case (kind)
-          case (KEY_SEGMENT)
-            keys(k)%v(nlist(1, k)) = idx
-            ct%xs(:, p%all_a%segments(:, idx)) = corners
-          case (KEY_NODE)
-            keys(k)%v(nlist(1, k)) = idx
-            ct%xs(:, p%all_a%nodes(idx)) = corners(:, 1)
-          case default
-            cands(k)%v(nlist(2, k)) = idx
-            ct%xs(:, p%all_b%segments(:, idx)) = corners
-          end select
-        end associate
-      end do
-      if (pass == 1) then
-        do k = 1, ct%npair
-          allocate(keys(k)%v(nlist(1, k)), cands(k)%v(nlist(2, k)))
-        end do
-        nlist = 0
-      end if
-    end do
-
+    call par_exchange_counts(ITEM * count, recv_count, ct%traffic)
+    call par_exchange(send, ITEM * count, recv, recv_count, ct%traffic)
+    deallocate(send)
     do k = 1, ct%npair
-      associate(p => ct%pairs(k))
-        call sort_values(keys(k)%v)
-        call sort_values(cands(k)%v)
-        if (p%method%pair_kind() == PAIR_SEGMENTS) then
-          call segment_pair_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
-              keys(k)%v, cands(k)%v)
-        else
-          call bucket_search(ct%xs, p%all_a, p%all_b, p%self, p%margin, sel(k)%pairs, &
-              keys(k)%v, cands(k)%v)
-          if (p%self) call keep_lower_side(p%all_a, sel(k)%pairs, p%mirror_of > 0)
-        end if
-      end associate
+      call search_received(ct%pairs(k), k, recv(:sum(recv_count)), sel(k))
     end do
 
   contains
 
-    subroutine emit(to, k, kind, idx, corners)
+    subroutine emit(to, k, kind, idx, sid, corner, corners)
       integer, intent(in) :: to, k, kind, idx
+      integer(i8), intent(in) :: sid !< face id (a node: 0)
+      integer, intent(in) :: corner(4) !< contact indices of the corners (a node: its own)
       real(rk), intent(in) :: corners(3, 4)
       integer :: at
       if (pass == 1) then
@@ -456,12 +435,180 @@ contains
         return
       end if
       fill(to + 1) = fill(to + 1) + 1
-      at = REC * (fill(to + 1) - 1)
+      at = ITEM * (fill(to + 1) - 1)
       send(at + 1:at + 3) = real([k, kind, idx], rk)
-      send(at + 4:at + REC) = reshape(corners, [12])
+      send(at + 4) = real(sid, rk)
+      send(at + 5:at + 8) = real(corner, rk)
+      send(at + 9:at + ITEM) = reshape(corners, [12])
     end subroutine emit
 
   end subroutine search_on_parts
+
+  !> One interface's search on what this part received (search_on_parts'
+  !> items, every interface's): the keys, candidates and rings as surfaces
+  !> of their own, numbered by a compact index of the contact nodes they
+  !> hold (ascending contact index, so every order follows the whole
+  !> surfaces'), with the received positions; the pairs in the whole
+  !> surfaces' numbering (segment index of a and b, or contact index of the
+  !> node and segment index of b), as the search on the whole surfaces
+  !> lists them.
+  subroutine search_received(p, k, recv, sel)
+    type(interface_t), intent(in) :: p
+    integer, intent(in) :: k !< the interface
+    real(rk), intent(in) :: recv(:) !< the items received (ITEM values each)
+    type(selection_t), intent(inout) :: sel
+    integer(i8), allocatable :: idx(:), sid(:), node(:)
+    integer, allocatable :: kind(:), corner(:, :), order(:), pairs(:, :), key(:), cand(:), &
+        ring(:), keys_at(:), cands_at(:), union(:)
+    real(rk), allocatable :: xc(:, :), pos(:, :, :)
+    type(contact_surface_t) :: sa, sb
+    integer :: n, j, m, at, nk, i
+    integer(i8) :: lowest
+
+    ! This interface's items, ordered by (kind, index) (stable).
+    n = 0
+    do j = 1, size(recv) / ITEM
+      if (nint(recv(ITEM * (j - 1) + 1)) == k) n = n + 1
+    end do
+    allocate(idx(n), sid(n), kind(n), corner(4, n), pos(3, 4, n))
+    m = 0
+    do j = 1, size(recv) / ITEM
+      at = ITEM * (j - 1)
+      if (nint(recv(at + 1)) /= k) cycle
+      m = m + 1
+      kind(m) = nint(recv(at + 2))
+      idx(m) = nint(recv(at + 3), i8)
+      sid(m) = nint(recv(at + 4), i8)
+      corner(:, m) = nint(recv(at + 5:at + 8))
+      pos(:, :, m) = reshape(recv(at + 9:at + ITEM), [3, 4])
+    end do
+    call sort_order(reshape([int(kind, i8), idx], [2, n], order=[2, 1]), order)
+    ! (a DAM ring segment arrives once for each of its nodes that keys)
+    key = pack(order, kind(order) /= ITEM_CANDIDATE .and. kind(order) /= ITEM_RING)
+    cand = pack(order, kind(order) == ITEM_CANDIDATE)
+    ring = pack(order, kind(order) == ITEM_RING)
+    ring = pack(ring, unique_mask(ring))
+
+    ! The compact node index: every corner received, with its position.
+    node = int(pack(corner, corner > 0), i8)
+    call sort_unique(node)
+    allocate(xc(3, size(node)))
+    xc = 0.0_rk
+    do j = 1, size(key)
+      call place(key(j))
+    end do
+    do j = 1, size(cand)
+      call place(cand(j))
+    end do
+
+    if (p%method%pair_kind() == PAIR_SEGMENTS) then
+      if (p%self) then
+        ! One surface: the keys and candidates together (a segment can be
+        ! both), by segment index; the self rule (b after a) reads it.
+        union = [key, cand]
+        call sort_order(idx(union), order)
+        union = union(order)
+        union = pack(union, unique_mask(union))
+        call surface_of(union, sa)
+        keys_at = [(position_in(union, key(j)), j = 1, size(key))]
+        cands_at = [(position_in(union, cand(j)), j = 1, size(cand))]
+        call segment_pair_search(xc, sa, sa, .true., p%margin, pairs, keys_at, cands_at)
+        sel%pairs = reshape([(int(idx(union(pairs(1, m)))), int(idx(union(pairs(2, m)))), &
+            m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+      else
+        call surface_of(key, sa)
+        call surface_of(cand, sb)
+        call segment_pair_search(xc, sa, sb, .false., p%margin, pairs)
+        sel%pairs = reshape([(int(idx(key(pairs(1, m)))), int(idx(cand(pairs(2, m)))), &
+            m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+      end if
+    else
+      ! The slave surface: the rings of the key nodes; the master: the
+      ! candidates.
+      call surface_of(ring, sa)
+      call surface_of(cand, sb)
+      nk = size(key)
+      allocate(keys_at(nk))
+      do j = 1, nk
+        keys_at(j) = surface_node_index(sa, sorted_find(node, int(corner(1, key(j)), i8)))
+      end do
+      call bucket_search(xc, sa, sb, p%self, p%margin, pairs, keys_at)
+      if (p%self) then
+        ! The lower side (keep_lower_side): a node pairs with a segment of
+        ! higher face id than its own lowest (or, in the reverse pass, not).
+        m = 0
+        do j = 1, size(pairs, 2)
+          i = surface_node_index(sa, pairs(1, j))
+          lowest = minval(sa%segment_id(sa%node_segments(sa%node_start(i): &
+              sa%node_start(i + 1) - 1)))
+          if ((lowest < sb%segment_id(pairs(2, j))) .eqv. p%mirror_of > 0) cycle
+          m = m + 1
+          pairs(:, m) = pairs(:, j)
+        end do
+        pairs = pairs(:, :m)
+      end if
+      sel%pairs = reshape([(int(node(pairs(1, m))), int(idx(cand(pairs(2, m)))), &
+          m = 1, size(pairs, 2))], [2, size(pairs, 2)])
+    end if
+
+  contains
+
+    !> The received positions of an item's corners (a node: its own).
+    subroutine place(item)
+      integer, intent(in) :: item
+      integer :: cc
+      do cc = 1, 4
+        if (corner(cc, item) > 0) xc(:, sorted_find(node, int(corner(cc, item), i8))) = &
+            pos(:, cc, item)
+      end do
+    end subroutine place
+
+    !> The items' segments (by item, in the given order) as a surface in the
+    !> compact node index.
+    subroutine surface_of(items, surf)
+      integer, intent(in) :: items(:)
+      type(contact_surface_t), intent(inout) :: surf
+      integer(ik) :: segs(4, size(items))
+      integer :: ii, cc
+      do ii = 1, size(items)
+        do cc = 1, 4
+          segs(cc, ii) = int(sorted_find(node, int(corner(cc, items(ii)), i8)), ik)
+        end do
+      end do
+      call surface_from_segments(segs, sid(items), surf=surf, adjacent=.false.)
+    end subroutine surface_of
+
+    !> Of items sorted by index, the first of each index.
+    function unique_mask(items) result(first)
+      integer, intent(in) :: items(:)
+      logical :: first(size(items))
+      integer :: ii
+      first = .true.
+      do ii = 2, size(items)
+        first(ii) = idx(items(ii)) /= idx(items(ii - 1))
+      end do
+    end function unique_mask
+
+    !> Place of an item among the union's (by index).
+    integer function position_in(list, item) result(at_)
+      integer, intent(in) :: list(:), item
+      integer :: lo_, hi_
+      lo_ = 1
+      hi_ = size(list)
+      at_ = 0
+      do while (lo_ <= hi_)
+        at_ = (lo_ + hi_) / 2
+        if (idx(list(at_)) == idx(item)) return
+        if (idx(list(at_)) < idx(item)) then
+          lo_ = at_ + 1
+        else
+          hi_ = at_ - 1
+        end if
+      end do
+      at_ = 0
+    end function position_in
+
+  end subroutine search_received
 
   !> Weights of the next RCB: each owned node's pairs keyed at this search
   !> (counted at the owners); when no part found any pair, one for each node
@@ -472,12 +619,27 @@ contains
     type(contact_t), intent(inout) :: ct
     type(selection_t), intent(in) :: sel(:)
     integer, intent(in) :: total !< pairs found by all parts
-    integer(i8), allocatable :: send(:), recv(:)
-    integer, allocatable :: count(:), recv_count(:), fill(:)
-    integer :: k, m, c, pass, nranks, r, j
+    integer(i8), allocatable :: send(:), recv(:), key(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), owner(:)
+    integer :: k, m, c, pass, nranks, r, j, n
     nranks = par_size()
     allocate(count(nranks), recv_count(nranks), fill(nranks))
+    ! The key nodes of this part's pairs and their owners (the directory).
+    n = 0
+    do k = 1, ct%npair
+      n = n + size(sel(k)%pairs, 2)
+    end do
+    allocate(key(n), owner(n))
+    n = 0
+    do k = 1, ct%npair
+      do m = 1, size(sel(k)%pairs, 2)
+        n = n + 1
+        key(n) = ct%all_gid(key_node(ct%pairs(k), sel(k)%pairs(:, m)))
+      end do
+    end do
+    call owners_of(ct, key, owner)
     do pass = 1, 2
+      n = 0
       if (pass == 1) then
         count = 0
       else
@@ -490,7 +652,8 @@ contains
       do k = 1, ct%npair
         do m = 1, size(sel(k)%pairs, 2)
           c = key_node(ct%pairs(k), sel(k)%pairs(:, m))
-          r = ct%all_owner(c) + 1
+          n = n + 1
+          r = owner(n) + 1
           if (pass == 1) then
             count(r) = count(r) + 1
           else
@@ -504,12 +667,104 @@ contains
     call par_exchange(send, count, recv, recv_count, ct%traffic)
     ct%key_weight = 0
     do j = 1, sum(recv_count)
-      m = ct%own_of(recv(j))
+      m = owned_index(ct, int(recv(j)))
       ct%key_weight(m) = ct%key_weight(m) + 1_i8
     end do
     ! No pairs anywhere: the key nodes, as before the first search.
     if (total == 0) ct%key_weight = merge(1_i8, 0_i8, ct%key_capable)
   end subroutine count_keys
+
+
+  !> The rank holding a contact node's entry in the owner directory.
+  pure integer function directory_rank(gid, nranks)
+    integer(i8), intent(in) :: gid !< global node id
+    integer, intent(in) :: nranks
+    directory_rank = int(modulo(gid, int(nranks, i8)))
+  end function directory_rank
+
+  !> The owner directory (contact_t%dir_gid, dir_owner): each rank sends the
+  !> global ids of its owned contact nodes to their directory ranks, which
+  !> keep them with the sender, by ascending id. Collective.
+  subroutine directory_build(ct)
+    type(contact_t), intent(inout) :: ct
+    integer(i8), allocatable :: send(:), recv(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), perm(:)
+    integer :: i, d, nranks, n, r, at
+    nranks = par_size()
+    allocate(count(nranks), recv_count(nranks), fill(nranks), send(ct%nown))
+    count = 0
+    do i = 1, ct%nown
+      d = directory_rank(ct%all_gid(ct%own_contact(i)), nranks) + 1
+      count(d) = count(d) + 1
+    end do
+    fill(1) = 0
+    do d = 2, nranks
+      fill(d) = fill(d - 1) + count(d - 1)
+    end do
+    do i = 1, ct%nown
+      d = directory_rank(ct%all_gid(ct%own_contact(i)), nranks) + 1
+      fill(d) = fill(d) + 1
+      send(fill(d)) = ct%all_gid(ct%own_contact(i))
+    end do
+    call par_exchange_counts(count, recv_count)
+    call par_exchange(send, count, recv, recv_count)
+    n = sum(recv_count)
+    if (allocated(ct%dir_gid)) deallocate(ct%dir_gid, ct%dir_owner)
+    allocate(ct%dir_owner(n))
+    ct%dir_gid = recv(:n)
+    at = 0
+    do r = 1, nranks
+      ct%dir_owner(at + 1:at + recv_count(r)) = r - 1
+      at = at + recv_count(r)
+    end do
+    call sort_order(ct%dir_gid, perm)
+    ct%dir_gid = ct%dir_gid(perm)
+    ct%dir_owner = ct%dir_owner(perm)
+  end subroutine directory_build
+
+  !> The mesh owners of contact nodes given by global id, from the owner
+  !> directory (a request to each directory rank and its answer). Collective.
+  subroutine owners_of(ct, gid, owner)
+    type(contact_t), intent(inout) :: ct
+    integer(i8), intent(in) :: gid(:)
+    integer, intent(out) :: owner(:) !< (size(gid)) mesh-owner rank of each
+    integer(i8), allocatable :: send(:), recv(:), answer(:), back(:)
+    integer, allocatable :: count(:), recv_count(:), fill(:), at(:)
+    integer :: i, d, nranks, j, e
+    nranks = par_size()
+    if (nranks == 1) then
+      owner = 0
+      return
+    end if
+    allocate(count(nranks), recv_count(nranks), fill(nranks), send(size(gid)), at(size(gid)))
+    count = 0
+    do i = 1, size(gid)
+      d = directory_rank(gid(i), nranks) + 1
+      count(d) = count(d) + 1
+    end do
+    fill(1) = 0
+    do d = 2, nranks
+      fill(d) = fill(d - 1) + count(d - 1)
+    end do
+    do i = 1, size(gid)
+      d = directory_rank(gid(i), nranks) + 1
+      fill(d) = fill(d) + 1
+      send(fill(d)) = gid(i)
+      at(fill(d)) = i
+    end do
+    call par_exchange_counts(count, recv_count, ct%traffic)
+    call par_exchange(send, count, recv, recv_count, ct%traffic)
+    allocate(answer(sum(recv_count)))
+    do j = 1, size(answer)
+      e = sorted_find(ct%dir_gid, recv(j))
+      if (e == 0) error stop 'contact owners_of: a node missing from the owner directory'
+      answer(j) = int(ct%dir_owner(e), i8)
+    end do
+    call par_exchange(answer, recv_count, back, count, ct%traffic)
+    do j = 1, size(gid)
+      owner(at(j)) = int(back(j))
+    end do
+  end subroutine owners_of
 
 
   !> x^n, v^n and f of the local set from the mesh owners; with full

@@ -13,7 +13,7 @@ module contact_records
   use parallel_exchange, only: par_exchange_partners
   implicit none
   private
-  public :: take, add_record, send_records, sum_records
+  public :: take, add_record, send_records, sum_records, position_of
 
   !> Contributions travelling from the parts to the mesh owners: ids
   !> (contact index, interface, key) and nv values each.
@@ -54,7 +54,7 @@ contains
   !> Append one record.
   subroutine add_record(r, node, k, key, val)
     type(records_t), intent(inout) :: r
-    integer, intent(in) :: node, k !< contact index, interface
+    integer, intent(in) :: node, k !< node of the part's local set, interface
     integer(i8), intent(in) :: key
     real(rk), intent(in) :: val(:)
     integer(i8), allocatable :: grown_id(:, :)
@@ -80,28 +80,37 @@ contains
   !> nearly sorted) bucket put them in order in linear time. One message per
   !> partner of the migration plan, ids and values together (values bit for
   !> bit), its length the count: no exchange of counts.
-  subroutine send_records(r, owner, own_of, nown, to, from, traffic)
+  subroutine send_records(r, owner, owner_pos, send_own, send_count, nown, to, from, traffic)
     type(records_t), intent(inout) :: r
-    integer, intent(in) :: owner(:) !< (nall) mesh-owner rank of each contact node
-    integer, intent(in) :: own_of(:) !< (nall) owned index on this rank, 0 if not owned
+    integer, intent(in) :: owner(:) !< (ncn) mesh-owner rank of each node of the local set
+    !> (ncn) its place among the nodes its owner sends this part (the
+    !> migration plan's order, from 1)
+    integer, intent(in) :: owner_pos(:)
+    !> owned index of each node this rank sends each part, by part (the plan's)
+    integer, intent(in) :: send_own(:)
+    integer, intent(in) :: send_count(:) !< (nranks) nodes this rank sends each part
     integer, intent(in) :: nown !< owned contact nodes of this rank
     !> (nranks) the owners of this part's local set, which get a message
     logical, intent(in) :: to(:)
     !> (nranks) the parts holding owned nodes of this rank, which send one
     logical, intent(in) :: from(:)
     type(traffic_t), intent(inout) :: traffic
-    integer, allocatable :: count(:), got(:), fill(:)
+    integer, allocatable :: count(:), got(:), fill(:), plan_start(:), dest(:)
     integer(i8) :: id(3)
     real(rk) :: val(r%nv)
-    integer :: j, o, nranks, nr, d, nv, i, e, w, at, n
+    integer :: j, o, nranks, nr, d, nv, i, e, w, at, n, source
     nranks = par_size()
     nv = r%nv
     w = 3 + nv
     allocate(count(nranks), got(nranks), fill(nranks))
+    ! A record names its node by its place in the owner's plan for this
+    ! part: the owner finds the owned index there.
+    allocate(dest(r%n))
     count = 0
     do j = 1, r%n
-      o = owner(r%id(1, j)) + 1
-      count(o) = count(o) + 1
+      dest(j) = owner(r%id(1, j)) + 1
+      count(dest(j)) = count(dest(j)) + 1
+      r%id(1, j) = int(owner_pos(r%id(1, j)), i8)
     end do
     fill(1) = 0
     do o = 2, nranks
@@ -123,7 +132,7 @@ contains
       call reserve_i8(r%irecv, 3 * r%n)
       call reserve_real(r%rsend, nv * r%n)
       do j = 1, r%n
-        o = owner(r%id(1, j)) + 1
+        o = dest(j)
         fill(o) = fill(o) + 1
         d = fill(o)
         r%irecv(3 * d - 2:3 * d) = r%id(:, j)
@@ -175,10 +184,20 @@ contains
       if (size(r%node) < nr) deallocate(r%node)
     end if
     if (.not. allocated(r%node)) allocate(r%node(max(2 * nr, 64)))
+    ! Each source's records in turn: the owned index from the plan.
+    allocate(plan_start(nranks))
+    plan_start(1) = 0
+    do o = 2, nranks
+      plan_start(o) = plan_start(o - 1) + send_count(o - 1)
+    end do
     r%start = 0
-    do j = 1, nr
-      r%node(j) = own_of(r%irecv(3 * j - 2))
-      r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
+    j = 0
+    do source = 1, nranks
+      do i = 1, got(source)
+        j = j + 1
+        r%node(j) = send_own(plan_start(source) + int(r%irecv(3 * j - 2)))
+        r%start(r%node(j) + 1) = r%start(r%node(j) + 1) + 1
+      end do
     end do
     r%start(1) = 1
     do i = 1, nown
@@ -207,7 +226,27 @@ contains
         r%val(:, e + 1) = val
       end do
     end do
+
   end subroutine send_records
+
+  !> Position of value in the ascending list, 0 if absent.
+  pure integer function position_of(list, value) result(i)
+    integer, intent(in) :: list(:)
+    integer, intent(in) :: value
+    integer :: lo, hi
+    lo = 1
+    hi = size(list)
+    do while (lo <= hi)
+      i = (lo + hi) / 2
+      if (list(i) == value) return
+      if (list(i) < value) then
+        lo = i + 1
+      else
+        hi = i - 1
+      end if
+    end do
+    i = 0
+  end function position_of
 
   !> Make a buffer hold at least n elements (grown by doubling, kept).
   subroutine reserve_i8(a, n)

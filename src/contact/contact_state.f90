@@ -17,12 +17,12 @@ module contact_state
   use contact_surface, only: contact_surface_t, nodal_areas
   use contact_geometry, only: segment_facets, triangle_unit_normal, triangle_vector_area, &
       quad_unit_normal, SEGMENT_FACET_COUNT
-  use contact_records, only: records_t
+  use contact_records, only: records_t, position_of
   use parallel_env, only: traffic_t
   implicit none
   private
   public :: capture_of, key_node, geometry_free, geometry_update, recovery_allowance, &
-      recovery_excess, recovery_speed_of
+      recovery_excess, recovery_speed_of, owned_index
 
   !> Pair kinds of a method's search (contact_method_t%pair_kind): segment
   !> pairs (a segment of a, a segment of b: keyed by the a-segment's first
@@ -170,7 +170,10 @@ module contact_state
     real(rk), public :: diag(CONTACT_DIAG_COUNT) = 0.0_rk !< last step's diagnostics
     ! Audit and per-interface output (contact_monitor).
     real(rk) :: reach = 0.0_rk !< audit reach: twice the larger median segment size
-    real(rk), allocatable :: offset(:) !< (nall) initial penetration kept, per contact node
+    !> (nown) initial penetration kept, per owned contact node (the audit,
+    !> the restart); loffset: the same for the local set (ncn), from the
+    !> owners with the migration plan (the methods read it)
+    real(rk), allocatable :: offset(:), loffset(:)
     real(rk), allocatable :: sag_a(:), sag_b(:) !< faceting sagitta of all_a, all_b at t = 0
     real(rk), allocatable :: lsag_a(:), lsag_b(:) !< the same on the local surfaces a, b
     logical, allocatable :: own_in_a(:) !< (nown) owned node on surface a
@@ -185,7 +188,8 @@ module contact_state
   !> whole surfaces a part reads (during a rebuild).
   type, public :: selection_t
     integer, allocatable :: pairs(:, :) !< (2, n) DLM: segments a, b; DAM: node, segment
-    logical, allocatable :: mark_a(:), mark_b(:) !< (nseg) segment in the local set
+    !> the segments of the whole surfaces a, b in the local set, ascending
+    integer, allocatable :: seg_a(:), seg_b(:)
   end type selection_t
 
   !> A list of integers (one per interface).
@@ -203,24 +207,31 @@ module contact_state
     ! Every contact node (static, on every rank).
     integer :: nall = 0 !< contact nodes of all surfaces
     integer(i8), allocatable :: all_gid(:) !< (nall) global ids, ascending
-    !> (nall) nodal masses (fixed), a rigid node's scaled by RIGID_MASS_FACTOR
-    real(rk), allocatable :: all_mass(:)
-    logical, allocatable :: all_rigid(:) !< (nall) motion prescribed (a velocity boundary)
-    integer, allocatable :: all_owner(:) !< (nall) rank owning the node in the mesh
-    ! Owned contact nodes of this rank.
+    ! Owned contact nodes of this rank (owned_index finds one by contact index).
     integer :: nown = 0
     integer, allocatable :: own_contact(:) !< (nown) contact index, ascending
     integer, allocatable :: own_local(:) !< (nown) local mesh node index
-    integer, allocatable :: own_of(:) !< (nall) owned index of a contact node, 0 if not owned
+    !> (nown) nodal masses (fixed), a rigid node's scaled by RIGID_MASS_FACTOR
+    real(rk), allocatable :: own_mass(:)
+    logical, allocatable :: own_rigid(:) !< (nown) motion prescribed (a velocity boundary)
+    !> The owner directory: the mesh-owner rank of the contact nodes whose
+    !> global id gid has mod(gid, nranks) = this rank (directory_rank), by
+    !> ascending gid; a part asks it for the owners of its local set
+    !> (contact_parts: owners_of). About nall / nranks entries per rank.
+    integer(i8), allocatable :: dir_gid(:)
+    integer, allocatable :: dir_owner(:)
     logical, allocatable :: key_capable(:) !< (nown) the node can key pairs (DLM first
                                            !< corner of an a-segment, DAM slave node)
     integer(i8), allocatable :: key_weight(:) !< (nown) RCB weight: pairs keyed at the last search
-    real(rk), allocatable :: xs(:, :) !< (3, nall) positions the part's search received
     real(rk), allocatable :: fc(:, :) !< (3, nown) contact force of the stage
     ! This rank's RCB part.
     integer :: ncn = 0 !< nodes of the local set
     integer, allocatable :: all_of(:) !< (ncn) their contact index, ascending
-    real(rk), allocatable :: mass(:) !< (ncn)
+    real(rk), allocatable :: mass(:) !< (ncn) from the owners' own_mass
+    integer, allocatable :: owner(:) !< (ncn) mesh-owner rank of each
+    !> (ncn) the place of each among the nodes its owner sends this part
+    !> (from 1; the records name their nodes by it: contact_records)
+    integer, allocatable :: owner_pos(:)
     real(rk), allocatable :: x(:, :), v(:, :), f(:, :) !< (3, ncn) x^n, v^n, f of the stage
     ! Migration plan (rebuilt with the RCB).
     integer, allocatable :: recv_count(:) !< (nranks) local nodes sent by each owner
@@ -485,6 +496,14 @@ contains
     end if
   end function key_node
 
+
+  !> Owned index of contact node c on this rank (a binary search of the
+  !> ascending own_contact), 0 if this rank does not own it.
+  pure integer function owned_index(ct, c) result(i)
+    type(contact_t), intent(in) :: ct
+    integer, intent(in) :: c !< contact index
+    i = position_of(ct%own_contact, c)
+  end function owned_index
 
   !> Forget a surface's cached geometry (its size changes with the local set).
   subroutine geometry_free(g)

@@ -30,7 +30,7 @@ module contact_surface
   public :: surface_renumbered
   public :: contact_surface_rebuild
   public :: surface_node_index, edge_end
-  public :: add_ring, local_surface, master_neighbourhood, keep_lower_side, nodal_areas
+  public :: ring_of, local_surface, master_neighbourhood, keep_lower_side, nodal_areas
 
   !> An edge is convex when sin(angle between the segment normals) exceeds this.
   real(rk), parameter, public :: CONVEX_TOLERANCE = 1.0e-8_rk
@@ -210,12 +210,15 @@ contains
   end subroutine contact_surface_rebuild
 
   !> Build a surface from an explicit segment list (outward node order).
-  subroutine surface_from_segments(segments, segment_id, x, surf)
+  subroutine surface_from_segments(segments, segment_id, x, surf, adjacent)
     integer(ik), intent(in) :: segments(:, :) !< (4, nseg) global node ids
     integer(i8), intent(in) :: segment_id(:) !< (nseg) global ids, for tie-breaking
     !> (3, nnode) node positions (absent: no edge flags, every edge convex)
     real(rk), intent(in), optional :: x(:, :)
     type(contact_surface_t), intent(inout) :: surf
+    !> .false.: no neighbours across edges and no edge flags (a surface
+    !> that only the search reads)
+    logical, intent(in), optional :: adjacent
     integer, allocatable :: local(:, :), fill(:)
     integer(i8), allocatable :: ids(:)
     integer :: nseg, s, k, n
@@ -259,6 +262,9 @@ contains
         fill(n) = fill(n) + 1
       end do
     end do
+    if (present(adjacent)) then
+      if (.not. adjacent) return
+    end if
     ! Neighbours: the other segment holding both ends of edge k.
     allocate(surf%neighbours(4, nseg), surf%edge_convex(4, nseg))
     do s = 1, nseg
@@ -352,45 +358,55 @@ contains
     i = 0
   end function surface_node_index
 
-  !> Grow a selection of segments by every segment sharing a node with it.
-  subroutine add_ring(surf, mark)
+  !> The segments given (any order, repeats allowed) and every segment
+  !> sharing a node with one of them: ascending, without repeats.
+  function ring_of(surf, segs) result(ring)
     type(contact_surface_t), intent(in) :: surf
-    logical, intent(inout) :: mark(:)
-    logical :: grown(size(mark))
-    integer :: s, c, n, e
-    grown = mark
-    do s = 1, surf%nseg
-      if (.not. mark(s)) cycle
-      do c = 1, 4
-        n = surface_node_index(surf, surf%segments(c, s))
-        do e = surf%node_start(n), surf%node_start(n + 1) - 1
-          grown(surf%node_segments(e)) = .true.
+    integer, intent(in) :: segs(:)
+    integer, allocatable :: ring(:)
+    integer(i8), allocatable :: grown(:), given(:)
+    integer :: j, c, n, e, count, pass
+    ! (a pair list names a segment many times)
+    allocate(given(size(segs)))
+    given(:) = int(segs, i8)
+    call sort_unique(given)
+    do pass = 1, 2
+      count = 0
+      do j = 1, size(given)
+        do c = 1, 4
+          n = surface_node_index(surf, surf%segments(c, given(j)))
+          do e = surf%node_start(n), surf%node_start(n + 1) - 1
+            count = count + 1
+            if (pass == 2) grown(count) = int(surf%node_segments(e), i8)
+          end do
         end do
       end do
+      if (pass == 1) allocate(grown(count))
     end do
-    mark = grown
-  end subroutine add_ring
+    call sort_unique(grown)
+    ring = int(grown)
+  end function ring_of
 
-  !> The selected segments of a whole surface as a local surface (local node
-  !> numbers, the same order; edge flags from xloc, the same as the whole
-  !> surface's for every segment whose neighbours are all selected); seg_of
-  !> maps a whole-surface segment to its local number.
-  subroutine local_surface(all, mark, l_of, xloc, surf, seg_of)
+  !> The segments list (ascending) of a whole surface as a local surface:
+  !> its nodes numbered by their place in local_set (ascending, holding
+  !> them all), the segments in the list's order; edge flags from xloc, the
+  !> same as the whole surface's for every segment whose neighbours are all
+  !> listed.
+  subroutine local_surface(all, list, local_set, xloc, surf)
     type(contact_surface_t), intent(in) :: all
-    logical, intent(in) :: mark(:)
-    integer, intent(in) :: l_of(:)
+    integer, intent(in) :: list(:)
+    integer, intent(in) :: local_set(:)
     real(rk), intent(in) :: xloc(:, :)
     type(contact_surface_t), intent(inout) :: surf
-    integer, allocatable, intent(out) :: seg_of(:)
-    integer, allocatable :: list(:)
     integer(ik), allocatable :: segments(:, :)
-    integer :: s, j
-    list = pack([(s, s = 1, all%nseg)], mark)
-    allocate(segments(4, size(list)), seg_of(all%nseg))
-    seg_of = 0
+    integer(i8), allocatable :: set(:)
+    integer :: j, c
+    allocate(segments(4, size(list)))
+    set = int(local_set, i8)
     do j = 1, size(list)
-      segments(:, j) = int(l_of(all%segments(:, list(j))), ik)
-      seg_of(list(j)) = j
+      do c = 1, 4
+        segments(c, j) = int(sorted_find(set, int(all%segments(c, list(j)), i8)), ik)
+      end do
     end do
     call surface_from_segments(segments, all%segment_id(list), xloc, surf)
   end subroutine local_surface

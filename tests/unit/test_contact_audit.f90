@@ -485,7 +485,7 @@ contains
     integer :: s
     call cube_surface(8, .true., x, surf)
     allocate(sz(surf%nseg), sag(surf%nseg), tn(3, 4, surf%nseg), tc(3, surf%nseg))
-    call segment_metrics(x, surf, sz, sag, tn, tc)
+    call segment_metrics(x, surf, sz, sag, tc, tn)
     ratio_lo = huge(1.0_rk)
     ratio_hi = 0.0_rk
     do s = 1, surf%nseg

@@ -115,7 +115,7 @@ contains
         this%inflow_wrong = this%inflow_wrong + 1
     if (r == 1) then
       do l = 1, ct%ncn
-        call add_record(out, ct%all_of(l), k, int(ct%all_of(l), i8), [1.0_rk])
+        call add_record(out, l, k, int(ct%all_of(l), i8), [1.0_rk])
         this%records_sent = this%records_sent + 1
       end do
     else

@@ -18,14 +18,21 @@
 !>   to remove); a mutation that gave every node its depth now, or none,
 !>   fails one of the two;
 !> * the next stages run a new global search on the new surfaces and the
-!>   contact forces stay finite.
+!>   contact forces stay finite;
+!> * the owner directory (contact_parts) holds each contact node exactly
+!>   once, on the rank mod(global id, ranks), with its mesh owner: the
+!>   entries number the contact nodes, and the entries naming rank r
+!>   number r's owned contact nodes, each of which its directory rank
+!>   holds (a directory that dropped, doubled or misfiled a node, or named
+!>   a wrong owner, fails one of these).
 !> On 1 and 3 ranks. Usage: test_contact_refresh DECK.
 program test_contact_refresh
   use, intrinsic :: iso_fortran_env, only: output_unit
   use core_kinds, only: rk, i8
   use core_status, only: status_t
   use core_timer, only: timers_t, wall_time
-  use parallel_env, only: par_init, par_finalize, par_sum, par_max, par_rank
+  use parallel_env, only: par_init, par_finalize, par_sum, par_max, par_rank, par_size, &
+      par_sum_array
   use io_h5, only: h5_library_open
   use io_deck, only: config_t, deck_read
   use mesh_local, only: mesh_t
@@ -54,8 +61,9 @@ program test_contact_refresh
   integer(i8), allocatable :: gid(:)
   logical, allocatable :: in_b(:)
   real(rk) :: expected, worst_a, worst_b
-  integer :: n, c
+  integer :: n
   logical, allocatable :: live(:)
+  real(rk), allocatable :: named(:), held(:)
   real(rk) :: ztop, zc
   integer :: ierr, z, i, stage, searches
   logical :: same, finite
@@ -77,10 +85,11 @@ program test_contact_refresh
   live = .true.
   call contact_surface_refresh(ct, mesh, state%node_position, state%node_mass, live, context)
   same = ct%nall == before%nall
-  if (same) same = all(ct%all_gid == before%all_gid) .and. all(ct%all_mass == before%all_mass) &
-      .and. all(ct%all_owner == before%all_owner) .and. ct%nown == before%nown
+  if (same) same = all(ct%all_gid == before%all_gid) .and. ct%nown == before%nown
   if (same) same = all(ct%own_contact == before%own_contact) .and. &
-      all(ct%own_local == before%own_local)
+      all(ct%own_local == before%own_local) .and. all(ct%own_mass == before%own_mass) .and. &
+      all(ct%own_rigid .eqv. before%own_rigid) .and. all(ct%dir_gid == before%dir_gid) .and. &
+      all(ct%dir_owner == before%dir_owner)
   do i = 1, ct%npair
     if (.not. same) exit
     associate(p => ct%pairs(i), q => before%pairs(i))
@@ -119,12 +128,11 @@ program test_contact_refresh
   worst_b = -1.0_rk
   do i = 1, ct%nown
     n = ct%own_local(i)
-    c = ct%own_contact(i)
     if (.not. in_b(n) .and. abs(xm(3, n) - 0.75_rk) < 1.0e-12_rk) then
       expected = min(0.05_rk, 1.0_rk - xm(1, n), 1.0_rk - xm(2, n))
-      worst_a = max(worst_a, abs(ct%pairs(1)%offset(c) - expected))
+      worst_a = max(worst_a, abs(ct%pairs(1)%offset(i) - expected))
     else if (in_b(n) .and. abs(xm(3, n) - 0.7_rk) < 1.0e-12_rk) then
-      worst_b = max(worst_b, abs(ct%pairs(1)%offset(c)))
+      worst_b = max(worst_b, abs(ct%pairs(1)%offset(i)))
     end if
   end do
   worst_a = par_max(worst_a)
@@ -158,6 +166,30 @@ program test_contact_refresh
     finite = finite .and. all(abs(force) < huge(1.0_rk))
   end do
   call check_true('a global search on the new surfaces', ct%rebuilds > searches)
+
+  ! The owner directory after the refresh.
+  call check_true('the directory holds every contact node once', &
+      par_sum(size(ct%dir_gid)) == ct%nall)
+  call check_true('each entry on the rank mod(global id, ranks)', par_sum(count( &
+      modulo(ct%dir_gid, int(par_size(), i8)) /= int(par_rank(), i8))) == 0)
+  allocate(named(par_size()), held(par_size()))
+  named = 0.0_rk
+  do i = 1, size(ct%dir_owner)
+    named(ct%dir_owner(i) + 1) = named(ct%dir_owner(i) + 1) + 1.0_rk
+  end do
+  call par_sum_array(named)
+  call check_true('the entries naming each rank number its owned contact nodes', &
+      par_sum(merge(0, 1, nint(named(par_rank() + 1)) == ct%nown)) == 0)
+  ! Each owned node's entry, on its directory rank (a sum over the ranks of
+  ! every owned node's global id against every entry's naming this rank).
+  held = 0.0_rk
+  do i = 1, size(ct%dir_gid)
+    held(ct%dir_owner(i) + 1) = held(ct%dir_owner(i) + 1) + real(ct%dir_gid(i), rk)
+  end do
+  call par_sum_array(held)
+  call check_true('the entries naming each rank hold its owned nodes'' global ids', &
+      par_sum(merge(0, 1, nint(held(par_rank() + 1), i8) == &
+      sum(ct%all_gid(ct%own_contact)))) == 0)
   call check_true('contact forces finite', par_sum(merge(0, 1, finite)) == 0)
   if (par_rank() == 0) write(output_unit, '(a,i0,a,i0)') 'contact nodes ', ct%nall, &
       ', segments of a ', ct%pairs(1)%all_a%nseg
