@@ -450,7 +450,7 @@ contains
       ! (RIGID_MASS_FACTOR) times a velocity bounded only by round-off,
       ! crushed the folding tube's top ring in cycle 3. The friction of that
       ! patch is the other pass's, where the deformable side is the slave.
-      if (p%spec%friction > 0.0_rk .and. .not. ct%all_rigid(ct%all_of(n))) then
+      if (p%spec%friction > 0.0_rk .and. .not. ct%rigid(n)) then
         vmi = 0.0_rk
         do c = 1, 4
           vmi = vmi + m_%rbf(c, q) * vm(:, p%b%segments(c, m_%primary(q)%segment))

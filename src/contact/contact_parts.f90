@@ -267,16 +267,19 @@ contains
     do j = 1, size(ct%send_own)
       ct%send_own(j) = owned_index(ct, int(wanted(j)))
     end do
-    ! The local set's masses and each interface's offsets from their owners.
-    allocate(owned(1, ct%nown, 1 + ct%npair))
+    ! The local set's masses, rigid flags and each interface's offsets from
+    ! their owners.
+    allocate(owned(1, ct%nown, 2 + ct%npair))
     owned(1, :, 1) = ct%own_mass
+    owned(1, :, 2) = merge(1.0_rk, 0.0_rk, ct%own_rigid)
     do k = 1, ct%npair
-      owned(1, :, 1 + k) = ct%pairs(k)%offset
+      owned(1, :, 2 + k) = ct%pairs(k)%offset
     end do
     call scatter_nodes(ct, owned, mass)
     ct%mass = mass(1, :, 1)
+    ct%rigid = mass(1, :, 2) > 0.0_rk
     do k = 1, ct%npair
-      ct%pairs(k)%loffset = mass(1, :, 1 + k)
+      ct%pairs(k)%loffset = mass(1, :, 2 + k)
     end do
   end subroutine contact_rebuild
 

@@ -228,6 +228,7 @@ module contact_state
     integer :: ncn = 0 !< nodes of the local set
     integer, allocatable :: all_of(:) !< (ncn) their contact index, ascending
     real(rk), allocatable :: mass(:) !< (ncn) from the owners' own_mass
+    logical, allocatable :: rigid(:) !< (ncn) from the owners' own_rigid
     integer, allocatable :: owner(:) !< (ncn) mesh-owner rank of each
     !> (ncn) the place of each among the nodes its owner sends this part
     !> (from 1; the records name their nodes by it: contact_records)
