@@ -70,7 +70,7 @@ LEVELS = {
     #
     # The decks' meshes (issue 32, README.md "Channel resolution"): the
     # channel r_fine = 1.5 a with 4 (coarse) or 6 (fine) zones across the
-    # core's edge: zones about 0.55-0.75 mm (coarse) and 0.37-0.5 mm (fine)
+    # core's edge: zones 0.54-0.8 mm (coarse) and 0.36-0.59 mm (fine)
     # across near the rod's radius; 2.0 mm (coarse) and 1.33 mm (fine) along
     # z. The fine level is 1.5x the coarse in the channel (across and along).
     "coarse": dict(n_core=1, n_ring=0, h_rod=1.2e-3, r_fine=1.5 * A, n_fine=4, core=0.42,
