@@ -78,8 +78,8 @@ LEVELS = {
     "fine": dict(n_core=1, n_ring=0, h_rod=1.2e-3, r_fine=1.5 * A, n_fine=6, core=0.42,
                  h=0.45e-3, h_ring=0.5e-3, h_z=1.333e-3, h_far=60.0e-3, coarsen=(8.0e-3,)),
     # The committed meshes before issue 32's channel study: 1.2 mm zones to
-    # r = 2a (coarse12; resists 3-6 times the cavity-expansion model in the
-    # first microseconds at 569 m/s) and a 2-zone rod on 0.8 mm (fine08).
+    # r = 2a (coarse12; resists 3.6 times the cavity-expansion model over the
+    # first 10 us at 569 m/s, 2.2 over 20 us) and a 2-zone rod on 0.8 mm (fine08).
     "coarse12": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=1.2e-3, h_far=30.0e-3),
     "fine08": dict(n_core=1, n_ring=1, h_rod=0.8e-3, h=0.8e-3, h_far=20.0e-3),
     # Studies of the nose flow (README.md): the coarse rod on a target with
