@@ -55,9 +55,11 @@ m/(2 pi a^2 rho_t N2) ln(1 + N2 rho_t V1^2/(A Y)).
 
 Usage: cavity_expansion.py [--velocities V ...] [--mass m] [--radius a]
        [--crh psi] [--Y Y] [--A A] [--B B] [--C C] [--rho R]
+       [--profile P ... [--start P0]]
 Defaults: the Piekutowski et al. (1999) rods and 6061-T6511 target (SI units).
 Prints, per striking velocity, the depth of the model, the closed form and the
-nose-entry speed loss.
+nose-entry speed loss; with --profile, the model's speed at the tip depths
+given (the deceleration to compare a run's first microseconds with).
 """
 
 import argparse
@@ -160,6 +162,34 @@ class Model:
                 return 0.0
         return math.sqrt(w)
 
+    def speed_at(self, speed, depths, start=0.0, flat=0.0, steps_per_nose=NOSE_STEPS):
+        """Speed of the rod when its (sharp) tip is at each depth of `depths` (increasing,
+        >= start), striking at `speed` with the tip at depth `start` (RK4 in P on w = V^2,
+        steps of at most l / steps_per_nose); 0 once it has stopped. A nose cut by a flat
+        of radius `flat` at the sharp tip's depth `start` (the cut part never touches):
+        the flat carries the normal stress at vn = V on its area pi flat^2."""
+        h_max = self.l / steps_per_nose
+        w, p, out = speed ** 2, start, []
+        flat_area = math.pi * flat ** 2
+
+        def rate(p, w):
+            v = math.sqrt(max(w, 0.0))
+            cut = self.force(start, v) if flat > 0.0 else 0.0
+            on_flat = flat_area * (self.alpha + self.beta * v + self.gamma * v * v)
+            return -2.0 / self.m * float(self.force(p, v) - cut + on_flat)
+
+        for target in depths:
+            while p < target and w > 0.0:
+                h = min(h_max, target - p)
+                k1 = rate(p, w)
+                k2 = rate(p + 0.5 * h, w + 0.5 * h * k1)
+                k3 = rate(p + 0.5 * h, w + 0.5 * h * k2)
+                k4 = rate(p + h, w + h * k3)
+                w += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+                p += h
+            out.append(math.sqrt(max(w, 0.0)))
+        return out
+
     def depth(self, speed):
         """Depth of the tip below the face when the rod stops (nose entry + tunnel)."""
         v1 = self.nose_entry(speed)
@@ -183,8 +213,26 @@ def main(argv=None):
                         help="striking velocities (m/s); default: the given and blind shots")
     for key, value in DEFAULTS.items():
         parser.add_argument(f"--{key}", type=float, default=value, help=f"default {value:g}")
+    parser.add_argument("--profile", type=float, nargs="+", metavar="P",
+                        help="tip depths (m): print the model's speed there for each velocity "
+                        "instead of the depths")
+    parser.add_argument("--start", type=float, default=0.0,
+                        help="with --profile: depth of the sharp tip at impact (m); a rod whose "
+                        "tip is cut by a flat of axial length f strikes with the sharp tip at "
+                        "f, default 0")
+    parser.add_argument("--flat", type=float, default=0.0,
+                        help="with --profile: radius (m) of that flat, which carries the normal "
+                        "stress at the rod's speed (0: no flat, default)")
     args = parser.parse_args(argv)
     model = Model(**{key: getattr(args, key) for key in DEFAULTS})
+    if args.profile:
+        depths = sorted(args.profile)
+        for v in args.velocities or [v for v, _ in GIVEN] + BLIND:
+            speeds = model.speed_at(v, depths, start=args.start, flat=args.flat)
+            for p, u in zip(depths, speeds):
+                print(f"V0 {v:8.1f}  tip depth {p * 1e3:9.3f} mm  speed {u:10.4f} m/s  "
+                      f"loss {v - u:9.4f} m/s")
+        return 0
     print(f"ogive CRH {model.psi:g}: a = {model.a * 1e3:.4f} mm, s = {model.s * 1e3:.4f} mm, "
           f"nose l = {model.l * 1e3:.4f} mm, m = {model.m:g} kg")
     print(f"N1 = {model.N1:.6f}, N2 = {model.N2:.6f} "

@@ -14,8 +14,10 @@ position). The dumps must be at most --max-gap apart in simulated time
 (default 10 us, in the dumps' units), else the deepest point may fall between
 two of them: exit code 2 with the widest gap named.
 
-Prints per dump: time (us), depth (mm), the rod's kinetic energy and its
-mean axial velocity (momentum/mass, m/s) from its nodes; then
+Prints per dump: time (us), depth (mm), the rod's kinetic energy, its
+mean axial velocity (momentum/mass, m/s) from its nodes and the largest
+distance of a live rod node from the z axis (mm; above the shank's radius
+the nose has mushroomed); then
 `P = ... mm`. Length and time units from the dumps' `units` attribute
 ('si': m, s; 'cm-g-us-mbar': cm, us).
 """
@@ -73,13 +75,14 @@ def measure(path, block, surface):
     nodes = np.unique(data["connectivity"][live])
     time = dump.problem_time(data)
     if nodes.size == 0:
-        return time, float("nan"), 0.0, float("nan"), data["attrs"].get("units", "")
+        return time, float("nan"), 0.0, float("nan"), data["attrs"].get("units", ""), float("nan")
     depth = max(surface - data["coordinates"][nodes, 2].min(), 0.0)
+    radius = float(np.hypot(data["coordinates"][nodes, 0], data["coordinates"][nodes, 1]).max())
     mass = data["node_mass"][nodes]
     velocity = data["node_velocity"][nodes]
     kinetic = 0.5 * float(np.sum(mass * np.sum(velocity ** 2, axis=1)))
     axial = float(np.sum(mass * velocity[:, 2]) / np.sum(mass))
-    return time, depth, kinetic, axial, data["attrs"].get("units", "")
+    return time, depth, kinetic, axial, data["attrs"].get("units", ""), radius
 
 
 def main(argv=None):
@@ -101,12 +104,14 @@ def main(argv=None):
     scale = SCALES[units]
     gap_limit = args.max_gap if args.max_gap is not None else 10.0 / scale["us"]
     if not args.quiet:
-        print(f"{'time (us)':>12} {'depth (mm)':>11} {'rod KE (J)':>12} {'rod vz (m/s)':>13}  dump")
-        for (time, depth, kinetic, axial, _), path in zip(rows, files):
+        print(f"{'time (us)':>12} {'depth (mm)':>11} {'rod KE (J)':>12} {'rod vz (m/s)':>13} "
+              f"{'rod r (mm)':>11}  dump")
+        for (time, depth, kinetic, axial, _, radius), path in zip(rows, files):
             print(f"{time * scale['us']:12.3f} {depth * scale['mm']:11.4f} "
-                  f"{kinetic / scale['joule'] * 4.0:12.5g} {axial * scale['mps']:13.3f}  "
-                  f"{os.path.basename(path)}")
-        print("(rod KE: the quarter model's times 4)")
+                  f"{kinetic / scale['joule'] * 4.0:12.5g} {axial * scale['mps']:13.3f} "
+                  f"{radius * scale['mm']:11.4f}  {os.path.basename(path)}")
+        print("(rod KE: the quarter model's times 4; rod r: the largest distance of a live rod "
+              "node from the axis, the nose's spread when above the shank's radius)")
     depths = np.array([r[1] for r in rows])
     best = int(np.nanargmax(depths))
     times = np.array([r[0] for r in rows])

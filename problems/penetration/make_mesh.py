@@ -3,12 +3,13 @@
 problem, written as an ASCII Gmsh 2.2 file (python3 + numpy only; no Gmsh
 needed). SI units (m). Usage:
 
-    make_mesh.py [--level coarse|fine] [-o FILE]
+    make_mesh.py [--level coarse|fine|...] [-o FILE]
 
-coarse -> penetration_coarse.msh, fine (the long deck's: 1.5x the target's
-and the rod's axial resolution, 2x the rod's cross-section) ->
-penetration_fine.msh, next to this script. The levels axis06, axis04,
-axis04z12 and axis are the target-resolution study of README.md.
+coarse -> penetration_coarse.msh, fine (the long deck's: 1.5x the coarse
+channel's resolution across and along z) -> penetration_fine.msh, next to this
+script. The other levels are studies (README.md): coarse_30 and fine_30 (the
+deck levels' channel to 30 mm only), coarse12 and fine08 (the meshes before
+issue 32's channel study), axis06, axis04, axis04z12 and axis.
 
 Geometry (README.md): quarter model x >= 0, y >= 0.
 * Rod (physical volume `rod`): radius a = 3.555 mm (7.11 mm diameter), tangent
@@ -21,12 +22,13 @@ Geometry (README.md): quarter model x >= 0, y >= 0.
 * Target (physical volume `target`): cylinder of radius 127 mm (254 mm
   diameter), -DEPTH <= z <= 0.
 Both are O-grids: a square core and a ring in the cross-section, extruded
-along z (the coarse rod has no ring: one kite-shaped zone per layer, whose
-outer corner lies on the circle). The rod's cross-section at height z is its shank's scaled by r(z)/a
-along the nose. The target's cross-section is fine up to radius R_FINE
-(the penetration channel, radius a, and the material it pushes aside), then
-polar rings graded out to 127 mm; along z it is fine to Z_FINE below the face,
-then graded to the back face.
+along z (the decks' rods have no ring: one kite-shaped zone per quarter
+layer, whose outer corner lies on the circle). The rod's cross-section at
+height z is its shank's scaled by r(z)/a along the nose. The target's cross-section is fine up to radius r_fine (the penetration
+channel, radius a, and the material it pushes aside: 1.5 a for the decks'
+levels, 2 a before), then polar rings graded out to 127 mm (optionally
+coarsened 3:1 tangentially through a transition ring); along z it is fine to
+Z_FINE below the face, then graded to the back face.
 Face sets (physical surfaces of quadrilaterals): `xsym` (x = 0) and `ysym`
 (y = 0) of both bodies, `target_top`, `target_bottom`, `target_side`,
 `rod_side` (shank and nose), `rod_tip` (the flat), `rod_back`.
@@ -57,11 +59,29 @@ LEVELS = {
     # rod: core zones per square edge and ring zones across the radius (0: one
     # kite-shaped zone per quarter cross-section, its outer corner on the arc),
     # rod axial zone size; target: zone size near the axis and along the
-    # penetration channel, largest zone far away (m). The rod's tip zones are
-    # r_tip / (n_core + n_ring) across and set the time step: 0.48 mm (coarse),
-    # 0.24 mm (fine).
-    "coarse": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=1.2e-3, h_far=30.0e-3),
-    "fine": dict(n_core=1, n_ring=1, h_rod=0.8e-3, h=0.8e-3, h_far=20.0e-3),
+    # penetration channel (h), largest zone far away (h_far), optionally the
+    # channel's radius (r_fine, default 2a) and its zones across the core's
+    # edge (n_fine, default from h), the core's half-width as a fraction of
+    # r_fine (core, default 0.5), the first polar ring's width (h_ring,
+    # default h), the axial zone size in the channel (h_z, default h), the
+    # channel's depth (z_fine, default Z_FINE) and radii beyond which the
+    # polar rings coarsen 3:1 tangentially (coarsen). The rod's tip zone is
+    # r_tip / (n_core + n_ring) across and 0.48 mm for the kite.
+    #
+    # The decks' meshes (issue 32, README.md "Channel resolution"): the
+    # channel r_fine = 1.5 a with 4 (coarse) or 6 (fine) zones across the
+    # core's edge: zones 0.54-0.8 mm (coarse) and 0.36-0.59 mm (fine)
+    # across near the rod's radius; 2.0 mm (coarse) and 1.33 mm (fine) along
+    # z. The fine level is 1.5x the coarse in the channel (across and along).
+    "coarse": dict(n_core=1, n_ring=0, h_rod=1.2e-3, r_fine=1.5 * A, n_fine=4, core=0.42,
+                   h=0.65e-3, h_ring=0.75e-3, h_z=2.0e-3, h_far=60.0e-3),
+    "fine": dict(n_core=1, n_ring=0, h_rod=1.2e-3, r_fine=1.5 * A, n_fine=6, core=0.42,
+                 h=0.45e-3, h_ring=0.5e-3, h_z=1.333e-3, h_far=60.0e-3, coarsen=(8.0e-3,)),
+    # The committed meshes before issue 32's channel study: 1.2 mm zones to
+    # r = 2a (coarse12; resists 3.6 times the cavity-expansion model over the
+    # first 10 us at 569 m/s, 2.2 over 20 us) and a 2-zone rod on 0.8 mm (fine08).
+    "coarse12": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=1.2e-3, h_far=30.0e-3),
+    "fine08": dict(n_core=1, n_ring=1, h_rod=0.8e-3, h=0.8e-3, h_far=20.0e-3),
     # Studies of the nose flow (README.md): the coarse rod on a target with
     # 0.4 mm or 0.6 mm zones near the axis, fine only down to 20 mm (the first
     # microseconds of a shot; not for whole shots).
@@ -70,10 +90,13 @@ LEVELS = {
     "axis04z12": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.4e-3, h_z=1.2e-3, h_far=30.0e-3,
                       z_fine=20.0e-3),
     # The coarse rod on a target with 0.4 mm zones across and 1.2 mm along the
-    # axis down to 250 mm: what the study says a shot needs (not committed as a
-    # .msh; no deck uses it yet).
+    # axis down to 250 mm (115 290 zones; no deck uses it).
     "axis": dict(n_core=1, n_ring=0, h_rod=1.2e-3, h=0.4e-3, h_z=1.2e-3, h_far=30.0e-3),
 }
+# The 20 us channel study at 569 m/s (README.md): each deck level with the
+# channel fine only to 30 mm ("<level>_30").
+for _name in ("coarse", "fine", "coarse12"):
+    LEVELS[_name + "_30"] = dict(LEVELS[_name], z_fine=30.0e-3)
 
 
 def nose_radius(x):
@@ -110,8 +133,9 @@ class Section:
     polar rings beyond it): 2D nodes, counter-clockwise quads and the edges on
     x = 0 and y = 0 and on the outer boundary."""
 
-    def __init__(self, n_core, ring_t, polar_radii=(), arc_radius=1.0):
-        core = 0.5  # half-width of the square core
+    def __init__(self, n_core, ring_t, polar_radii=(), arc_radius=1.0, coarsen=(), core=0.5):
+        # core: half-width of the square core (0.5: the ring is 0.29 thick on the
+        # diagonals and 0.5 on the axes; about 0.42 evens the ring's zones out)
         nodes, index = [], {}
 
         def add(key, point):
@@ -142,10 +166,6 @@ class Section:
                 arc = arc_radius * np.array([math.cos(theta[m]), math.sin(theta[m])])
                 add(("r", layer, m), tuple((1.0 - t) * sq + t * arc))
         n_layer = len(ring_t) - 1
-        for p, rho in enumerate(polar_radii, start=1):
-            for m in range(n_tan + 1):
-                add(("r", n_layer + p, m), (rho * math.cos(theta[m]), rho * math.sin(theta[m])))
-        n_layer += len(polar_radii)
 
         def ring_key(layer, m):
             return square(m) if layer == 0 else ("r", layer, m)
@@ -165,8 +185,47 @@ class Section:
                               index[ring_key(layer + 1, m + 1)], index[ring_key(layer, m + 1)]])
             ysym.append((index[ring_key(layer, 0)], index[ring_key(layer + 1, 0)]))
             xsym.append((index[ring_key(layer + 1, n_tan)], index[ring_key(layer, n_tan)]))
-        for m in range(n_tan):
-            outer.append((index[ring_key(n_layer, m)], index[ring_key(n_layer, m + 1)]))
+        # Polar rings: node ids of the ring just made, counter-clockwise. A
+        # ring in `coarsen` is a 3:1 transition: each three tangential zones
+        # inside meet one outside, through two nodes half-way out (four
+        # quadrilaterals per group, the standard 3-to-1 template).
+        ring = [index[ring_key(n_layer, m)] for m in range(n_tan + 1)]
+        inner_rho = arc_radius
+        for p, rho in enumerate(polar_radii, start=1):
+            count = len(ring) - 1
+            if p in coarsen:
+                if count % 3:
+                    raise ValueError("a 3:1 transition needs a multiple of 3 zones")
+                count_out = count // 3
+                theta_in = 0.5 * math.pi * np.arange(count + 1) / count
+                mid_rho = 0.5 * (inner_rho + rho)
+                new = []
+                for m in range(count_out + 1):
+                    t = 0.5 * math.pi * m / count_out
+                    new.append(len(nodes))
+                    nodes.append((rho * math.cos(t), rho * math.sin(t)))
+                for g in range(count_out):
+                    a0, a1, a2, a3 = ring[3 * g:3 * g + 4]
+                    c1, c2 = len(nodes), len(nodes) + 1
+                    for m in (3 * g + 1, 3 * g + 2):
+                        nodes.append((mid_rho * math.cos(theta_in[m]),
+                                      mid_rho * math.sin(theta_in[m])))
+                    b0, b1 = new[g], new[g + 1]
+                    quads += [[a0, b0, c1, a1], [a1, c1, c2, a2], [a2, c2, b1, a3],
+                              [c1, b0, b1, c2]]
+            else:
+                new = []
+                for m in range(count + 1):
+                    t = 0.5 * math.pi * m / count
+                    new.append(len(nodes))
+                    nodes.append((rho * math.cos(t), rho * math.sin(t)))
+                for m in range(count):
+                    quads.append([ring[m], new[m], new[m + 1], ring[m + 1]])
+            ysym.append((ring[0], new[0]))
+            xsym.append((new[-1], ring[-1]))
+            ring, inner_rho = new, rho
+        for m in range(len(ring) - 1):
+            outer.append((ring[m], ring[m + 1]))
         self.xy = np.array(nodes)
         self.quads = np.array(quads)
         self.xsym, self.ysym, self.outer = xsym, ysym, outer
@@ -298,16 +357,20 @@ def build(level, tip="flat"):
                  dict(xsym="xsym", ysym="ysym", outer="rod_side", bottom="rod_tip",
                       top="rod_back"), shift=dome)
     # Target: fine O-grid to R_FINE, polar rings graded to the outer radius.
-    n_fine = max(1, round(0.5 * R_FINE / h))
-    radii = R_FINE + graded(TARGET_RADIUS - R_FINE, h, spec["h_far"])[1:]
-    target_section = Section(max(1, round(0.5 * R_FINE / h)),
-                             np.linspace(0.0, 1.0, n_fine + 1), radii / R_FINE)
+    r_fine = spec.get("r_fine", R_FINE)
+    n_fine = spec.get("n_fine", max(1, round(0.5 * r_fine / h)))
+    radii = r_fine + graded(TARGET_RADIUS - r_fine, spec.get("h_ring", h), spec["h_far"])[1:]
+    # 3:1 tangential transitions at the first polar rings beyond the radii in
+    # spec["coarsen"] (1-based ring numbers).
+    coarsen = [1 + int(np.searchsorted(radii, r)) for r in spec.get("coarsen", ())]
+    target_section = Section(n_fine, np.linspace(0.0, 1.0, n_fine + 1), radii / r_fine,
+                             coarsen=coarsen, core=spec.get("core", 0.5))
     fine_depth = spec.get("z_fine", Z_FINE)
     h_z = spec.get("h_z", h)  # axial zone size of the target's fine part
     z_fine = -graded(fine_depth, h_z, h_z)
     z_deep = -fine_depth - graded(DEPTH - fine_depth, h_z, spec["h_far"] / 2.0)[1:]
     z_target = np.concatenate([z_deep[::-1], z_fine[::-1]])
-    mesh.extrude("target", target_section, z_target, lambda z: R_FINE,
+    mesh.extrude("target", target_section, z_target, lambda z: r_fine,
                  dict(xsym="xsym", ysym="ysym", outer="target_side", bottom="target_bottom",
                       top="target_top"))
     return mesh, dict(r_tip=r_tip, h_tip=h_tip, rod_layers=len(stations) - 1,

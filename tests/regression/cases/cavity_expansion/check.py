@@ -12,7 +12,10 @@ Criteria (each can fail):
 * the tunnel closed form (whole nose in from speed V1) equals the time
   integration started with the nose in, and the tool's depth (numerical nose
   entry + closed-form tunnel) equals the time integration from the first
-  contact, both to 1e-6 relative, for the given and blind velocities.
+  contact, both to 1e-6 relative, for the given and blind velocities;
+* the speed profile (`--profile`, Model.speed_at): at the nose's full depth
+  the nose entry's speed to 1e-12, and half-way down the tunnel a speed
+  whose closed-form tunnel ends at the model's depth, to 1e-6.
   Bound: RK4's global error is O(dt^4); the run uses dt = T/N with N = 4000
   steps over the penetration time and measures the error by Richardson (N
   against N/2: the difference times 16/15); that estimate is asserted below
@@ -148,6 +151,18 @@ def main():
               reference, TOLERANCE)
         if estimate > RICHARDSON:
             failures.append(f"RK4 not converged at V = {v}")
+    # --profile (speed_at): at the nose's full depth it is the nose entry's
+    # speed (the same RK4 steps: round-off over 400 steps, 1e-12); half-way
+    # down the tunnel, the closed-form tunnel from its speed ends at the
+    # model's depth (RK4 in P with steps l/400 against the exact tunnel: its
+    # error is far below the 1e-6 bound used for the time integration above).
+    for v in (569.0, 1147.0):
+        check(f"speed_at(l) = nose_entry at V = {v:g} m/s", model.speed_at(v, [model.l])[0],
+              model.nose_entry(v), ROUND_OFF)
+        half = model.l + 0.5 * (model.depth(v) - model.l)
+        u = model.speed_at(v, [half])[0]
+        check(f"depth from speed_at half-way down the tunnel, V = {v:g} m/s",
+              half + model.tunnel(u), model.depth(v), TOLERANCE)
     if failures:
         print("cavity_expansion: FAILED: " + "; ".join(failures))
         return 1

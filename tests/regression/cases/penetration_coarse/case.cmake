@@ -16,7 +16,7 @@ impact3d_regress(long/penetration_coarse_20us "regression;contact;solids;long"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/penetration_coarse_20us
   --t-end 20.0e-6 --mpiexec ${MPIEXEC_EXECUTABLE} --np 2)
 # * long/restart_penetration: 12 us on 2 ranks, restarted from the dump at
-#   6 us (cycle 322 when written; 11 zones eroded, the surfaces rebuilt with
+#   6 us (cycle 357 when written; 27 zones eroded, the surfaces rebuilt with
 #   offsets measured)
 #   on 3 ranks: every later dump bitwise the uninterrupted run's (eroded
 #   zones turned inside out keep their density from the dump).
