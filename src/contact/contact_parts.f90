@@ -35,7 +35,6 @@ module contact_parts
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_node_index, ring_of, local_surface, &
       surface_from_segments
-  use contact_records, only: position_of
   use contact_search, only: bucket_search, segment_pair_search, search_interval, find_key
   use contact_state, only: contact_t, interface_t, selection_t, PAIR_SEGMENTS, capture_of, &
       key_node, geometry_free, owned_index
@@ -299,13 +298,13 @@ contains
         p%lsag_a = p%sag_a(seg_a)
         p%lsag_b = p%sag_b(seg_b)
         if (p%method%pair_kind() == PAIR_SEGMENTS) then
-          p%pairs = reshape([(position_of(seg_a, pairs(1, m)), position_of(seg_b, pairs(2, m)), &
+          p%pairs = reshape([(sorted_find(seg_a, pairs(1, m)), sorted_find(seg_b, pairs(2, m)), &
               m = 1, size(pairs, 2))], [2, size(pairs, 2)])
           ! The global order of a segment pair: the search lists them by (a, b).
           p%pair_key = [(int(pairs(1, m) - 1, i8) * int(p%all_b%nseg, i8) + &
               int(pairs(2, m), i8), m = 1, size(pairs, 2))]
         else
-          p%pairs = reshape([(position_of(ct%all_of, pairs(1, m)), position_of(seg_b, &
+          p%pairs = reshape([(sorted_find(ct%all_of, pairs(1, m)), sorted_find(seg_b, &
               pairs(2, m)), m = 1, size(pairs, 2))], [2, size(pairs, 2)])
         end if
         call geometry_free(p%ga)

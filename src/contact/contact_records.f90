@@ -13,7 +13,7 @@ module contact_records
   use parallel_exchange, only: par_exchange_partners
   implicit none
   private
-  public :: take, add_record, send_records, sum_records, position_of
+  public :: take, add_record, send_records, sum_records
 
   !> Contributions travelling from the parts to the mesh owners: ids
   !> (contact index, interface, key) and nv values each.
@@ -228,25 +228,6 @@ contains
     end do
 
   end subroutine send_records
-
-  !> Position of value in the ascending list, 0 if absent.
-  pure integer function position_of(list, value) result(i)
-    integer, intent(in) :: list(:)
-    integer, intent(in) :: value
-    integer :: lo, hi
-    lo = 1
-    hi = size(list)
-    do while (lo <= hi)
-      i = (lo + hi) / 2
-      if (list(i) == value) return
-      if (list(i) < value) then
-        lo = i + 1
-      else
-        hi = i - 1
-      end if
-    end do
-    i = 0
-  end function position_of
 
   !> Make a buffer hold at least n elements (grown by doubling, kept).
   subroutine reserve_i8(a, n)

@@ -17,7 +17,8 @@ module contact_state
   use contact_surface, only: contact_surface_t, nodal_areas
   use contact_geometry, only: segment_facets, triangle_unit_normal, triangle_vector_area, &
       quad_unit_normal, SEGMENT_FACET_COUNT
-  use contact_records, only: records_t, position_of
+  use contact_records, only: records_t
+  use core_sort, only: sorted_find
   use parallel_env, only: traffic_t
   implicit none
   private
@@ -503,7 +504,7 @@ contains
   pure integer function owned_index(ct, c) result(i)
     type(contact_t), intent(in) :: ct
     integer, intent(in) :: c !< contact index
-    i = position_of(ct%own_contact, c)
+    i = sorted_find(ct%own_contact, c)
   end function owned_index
 
   !> Forget a surface's cached geometry (its size changes with the local set).

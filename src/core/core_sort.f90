@@ -26,6 +26,11 @@ module core_sort
     module procedure values_real, values_int, values_i8
   end interface sort_values
 
+  !> Index of a key in an ascending array (binary search), 0 if absent.
+  interface sorted_find
+    module procedure find_i8, find_int
+  end interface sorted_find
+
 contains
 
   !> Stable permutation: key(order) is non-decreasing.
@@ -227,8 +232,8 @@ contains
     a = a(:j)
   end subroutine sort_unique
 
-  !> Index of key in the ascending array keys (binary search), 0 if absent.
-  pure integer function sorted_find(keys, key) result(i)
+  !> sorted_find on 64-bit keys.
+  pure integer function find_i8(keys, key) result(i)
     integer(i8), intent(in) :: keys(:)
     integer(i8), intent(in) :: key
     integer :: low, high
@@ -244,6 +249,25 @@ contains
       end if
     end do
     i = 0
-  end function sorted_find
+  end function find_i8
+
+  !> sorted_find on default integer keys.
+  pure integer function find_int(keys, key) result(i)
+    integer, intent(in) :: keys(:)
+    integer, intent(in) :: key
+    integer :: low, high
+    low = 1
+    high = size(keys)
+    do while (low <= high)
+      i = (low + high) / 2
+      if (keys(i) == key) return
+      if (keys(i) < key) then
+        low = i + 1
+      else
+        high = i - 1
+      end if
+    end do
+    i = 0
+  end function find_int
 
 end module core_sort
