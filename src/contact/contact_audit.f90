@@ -279,7 +279,7 @@ contains
   !> surfaces and the node, so every rank finds the same closest point (an
   !> exact tie goes to the first visited).
   subroutine audit_gaps(x, own, target, self, reach, selected, gap, hit, inward, planes, &
-      target_size, target_sagitta)
+      target_size, target_sagitta, grid_box)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: own, target
     logical, intent(in) :: self
@@ -295,6 +295,10 @@ contains
     !> the target's segment sizes and sagittas (segment_metrics), which the
     !> caller's tolerances read (unallocated when no node was audited)
     real(rk), allocatable, intent(out), optional :: target_size(:), target_sagitta(:)
+    !> (3, 2) the lower and upper corners of the whole target surface's box
+    !> when target is a part of it (the grid is then the whole surface's,
+    !> so candidates are visited in the same order; absent: target's own box)
+    real(rk), intent(in), optional :: grid_box(:, :)
     real(rk), allocatable :: tsize(:), tsag(:), tc(:, :)
     integer, allocatable :: cell_start(:), cell_list(:), stamp(:), cand(:), ring(:)
     real(rk) :: lo(3), hi(3), cell, p(3), q(3), best_q(3), d2, best_d2, nrm(3), own_n(3), d(3)
@@ -393,14 +397,19 @@ contains
       real(rk) :: blo(3), bhi(3)
       integer, allocatable :: fill(:)
       integer :: a1(3), a2(3), jx, jy, jz, jc, total, pass
-      lo = huge(1.0_rk)
-      hi = -huge(1.0_rk)
-      do s = 1, target%nseg
-        do k = 1, 4
-          lo = min(lo, x(:, target%segments(k, s)))
-          hi = max(hi, x(:, target%segments(k, s)))
+      if (present(grid_box)) then
+        lo = grid_box(:, 1)
+        hi = grid_box(:, 2)
+      else
+        lo = huge(1.0_rk)
+        hi = -huge(1.0_rk)
+        do s = 1, target%nseg
+          do k = 1, 4
+            lo = min(lo, x(:, target%segments(k, s)))
+            hi = max(hi, x(:, target%segments(k, s)))
+          end do
         end do
-      end do
+      end if
       cell = max(reach, maxval(hi - lo) / real(MAX_CELLS, rk), tiny(1.0_rk))
       ncell = max(1, min(MAX_CELLS, int((hi - lo) / cell) + 1))
       total = product(ncell)

@@ -3,10 +3,17 @@
 !> or ignore), at every global search and at every dump; the per-interface
 !> force and work of each step; and the warning policy (on_penetration).
 !>
-!> The audit reads positions only. Every rank holds every contact node's
-!> position (one sum over the ranks per audit) and audits the nodes it owns
-!> against the whole opposite surface, so each node's gap, and so the
-!> maxima and counts, are the same on any number of ranks.
+!> The audit reads positions only. Each rank audits the nodes it owns. It
+!> gets the positions of the contact nodes near them from their owners (one
+!> exchange: every rank's box of owned nodes, widened by the reach and two
+!> segment spans, near_nodes), and audits its nodes against the segments of
+!> the opposite surface whose corners all arrived. Those hold every segment
+!> within reach of an owned node and the segments around their corners, and
+!> the bucket grid is the whole surface's (its box from one reduction), so
+!> each node's closest point, and the order in which its candidates are
+!> visited, are those of the whole surface: the gaps, maxima and counts are
+!> the same on any number of ranks. No rank holds a position array of every
+!> contact node.
 !>
 !> Penetration of a node = its depth inside the opposite body (the audit's
 !> negative gap) less the initial penetration the deck kept for it (the
@@ -21,15 +28,19 @@ module contact_monitor
   use core_exact_sum, only: exact_sum_t, exact_value
   use core_status, only: status_t
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
-  use core_sort, only: sort_unique, sorted_find
-  use contact_surface, only: contact_surface_t, surface_renumbered
+  use core_sort, only: sort_unique, sorted_find, sort_order
+  use contact_surface, only: contact_surface_t, surface_renumbered, surface_from_segments, &
+      surface_node_index
   use contact_audit, only: audit_gaps, segment_sizes, node_tolerance, audit_reach
   use contact_state, only: contact_spec_t, interface_t, contact_t, contact_method_t, &
       initial_offsets_t, DIAG_FORCE, DIAG_WORK, DIAG_AUDIT, SURFACE_LEN, owned_index
   use contact_factory, only: contact_method_new
   use contact_sides, only: side_context_t, side_surface
   use mesh_local, only: mesh_t
-  use parallel_env, only: par_sum_array, par_sum_exact, par_rank, par_size, par_allgather
+  use parallel_env, only: par_sum_array, par_sum_exact, par_rank, par_size, par_allgather, &
+      par_max_array
+  use parallel_route, only: par_min_array
+  use parallel_exchange, only: par_exchange, par_exchange_counts
   implicit none
   private
   public :: contact_initial, contact_audit_run, contact_step_end, contact_audit_due
@@ -44,11 +55,27 @@ module contact_monitor
     integer, allocatable :: hit(:)
   end type side_t
 
+  !> The contact nodes near this rank's owned ones, with their positions
+  !> (near_nodes): the audit's node numbering (the near index).
+  type :: near_t
+    !> every contact node (one rank): the near index is the contact index,
+    !> and the audit reads the whole surfaces
+    logical :: all = .false.
+    integer, allocatable :: c(:) !< (n) contact indices, ascending
+    real(rk), allocatable :: x(:, :) !< (3, n) their positions
+  end type near_t
+
+  !> The widening of a rank's box of owned nodes: the reach and this many
+  !> largest segment spans (two are needed: a segment within reach of a node
+  !> and the segments around its corners; the rest is margin).
+  real(rk), parameter :: SPAN_WIDENING = 2.5_rk
+
 contains
 
   !> The audit of one side: gaps of the selected nodes of `own` against
   !> `other`, penetration beyond the offsets, and each node's tolerance.
-  subroutine audit_side(x, own, other, self, reach, tol_fixed, offset, selected, planes, side)
+  subroutine audit_side(x, own, other, self, reach, tol_fixed, offset, selected, planes, side, &
+      grid_box)
     real(rk), intent(in) :: x(:, :)
     type(contact_surface_t), intent(in) :: own, other
     logical, intent(in) :: self
@@ -57,6 +84,8 @@ contains
     logical, intent(in) :: selected(:) !< (own%nnode)
     real(rk), intent(in) :: planes(:, :) !< (4, n) symmetry planes (contact_audit)
     type(side_t), intent(out) :: side
+    !> (3, 2) box of the whole surface of which other is a part (audit_gaps)
+    real(rk), intent(in), optional :: grid_box(:, :)
     real(rk), allocatable :: osz(:), tsz(:), tsag(:)
     real(rk) :: hmin
     integer :: i, e, n
@@ -65,7 +94,7 @@ contains
     ! (the target's sizes and sagittas from audit_gaps, which computes them;
     ! of the own side only the sizes)
     call audit_gaps(x, own, other, self, reach, selected, side%gap, side%hit, side%inward, &
-        planes, tsz, tsag)
+        planes, tsz, tsag, grid_box)
     allocate(osz(own%nseg))
     call segment_sizes(x, own, osz)
     do i = 1, n
@@ -306,84 +335,296 @@ contains
   end subroutine surface_positions
 
 
-  !> The audit of every interface at positions x (local mesh nodes; the
-  !> owned ones are read): history columns, the per-node smallest gap for
-  !> the dumps, a rate-limited warning, and ct%stop_run for on_penetration =
-  !> 'stop'. Collective.
-  !> Every contact node's position, on every rank: the owners' positions
-  !> summed (one owner each, zero elsewhere: exact). Collective.
-  function positions_everywhere(ct, x) result(xall)
+  !> The contact nodes within the audit's reach of this rank's owned ones,
+  !> and around them, with their positions from their owners: each rank's
+  !> box of owned contact nodes is sent to every rank (one gather), and each
+  !> owner sends the positions of its nodes inside a box widened by h. h is
+  !> the largest reach and SPAN_WIDENING times the largest segment span
+  !> (the distance between two corners of one segment); the span is
+  !> measured, after the exchange, by the owner of each segment's first
+  !> corner, and when the exchange was too narrow (a segment with a corner
+  !> missing, or h below the reach and two spans) it is repeated wider. One
+  !> rank holds every node (near%all). Collective.
+  subroutine near_nodes(ct, x, near)
+    type(contact_t), intent(inout) :: ct
+    real(rk), intent(in) :: x(:, :) !< (3, nnode local)
+    type(near_t), intent(out) :: near
+    real(rk), allocatable :: xo(:, :), boxes(:, :), sbuf(:), rbuf(:)
+    integer, allocatable :: scount(:), rcount(:), order(:)
+    integer(i8), allocatable :: key(:)
+    real(rk) :: box(6), reach, h, meas(2)
+    integer :: np, o, r, n, j, fill
+    np = par_size()
+    allocate(xo(3, ct%nown))
+    do o = 1, ct%nown
+      xo(:, o) = x(:, ct%own_local(o))
+    end do
+    if (np == 1) then
+      near%all = .true.
+      near%c = ct%own_contact
+      call move_alloc(xo, near%x)
+      return
+    end if
+    reach = 0.0_rk
+    do j = 1, ct%ndeck
+      reach = max(reach, ct%pairs(j)%reach)
+    end do
+    box(1:3) = huge(1.0_rk)
+    box(4:6) = -huge(1.0_rk)
+    do o = 1, ct%nown
+      box(1:3) = min(box(1:3), xo(:, o))
+      box(4:6) = max(box(4:6), xo(:, o))
+    end do
+    allocate(boxes(6, np), scount(np), rcount(np))
+    call par_allgather(box, boxes)
+    h = 2.0_rk * reach
+    if (ct%audit_span > 0.0_rk) h = reach + SPAN_WIDENING * ct%audit_span
+    do
+      do r = 1, np
+        scount(r) = 4 * count([(inside(xo(:, o), boxes(:, r)), o = 1, ct%nown)])
+      end do
+      if (allocated(sbuf)) deallocate(sbuf)
+      allocate(sbuf(max(sum(scount), 1)))
+      fill = 0
+      do r = 1, np
+        do o = 1, ct%nown
+          if (.not. inside(xo(:, o), boxes(:, r))) cycle
+          sbuf(fill + 1:fill + 4) = [real(ct%own_contact(o), rk), xo(:, o)]
+          fill = fill + 4
+        end do
+      end do
+      call par_exchange_counts(scount, rcount)
+      call par_exchange(sbuf, scount, rbuf, rcount)
+      n = sum(rcount) / 4
+      ! (a contact index is exact in a double)
+      key = [(int(rbuf(4 * j - 3), i8), j = 1, n)]
+      call sort_order(key, order)
+      near%c = int(key(order))
+      if (allocated(near%x)) deallocate(near%x)
+      allocate(near%x(3, n))
+      do j = 1, n
+        near%x(:, j) = rbuf(4 * order(j) - 2:4 * order(j))
+      end do
+      meas = spans()
+      call par_max_array(meas)
+      if (meas(2) == 0.0_rk .and. reach + 2.0_rk * meas(1) <= h) exit
+      h = max(2.0_rk * h, reach + SPAN_WIDENING * meas(1))
+    end do
+    ct%audit_span = meas(1)
+
+  contains
+
+    !> Point q within box b (lower, upper corner) widened by h.
+    pure logical function inside(q, b)
+      real(rk), intent(in) :: q(3), b(6)
+      inside = all(q >= b(1:3) - h) .and. all(q <= b(4:6) + h)
+    end function inside
+
+    !> The largest span of the segments whose first corner this rank owns
+    !> (those with every corner here), and 1 when one of them has a corner
+    !> that did not arrive.
+    function spans() result(m)
+      real(rk) :: m(2)
+      integer :: k
+      m = 0.0_rk
+      do k = 1, ct%ndeck
+        call surface_spans(ct%pairs(k)%all_a, m)
+        call surface_spans(ct%pairs(k)%all_b, m)
+      end do
+    end function spans
+
+    subroutine surface_spans(surf, m)
+      type(contact_surface_t), intent(in) :: surf
+      real(rk), intent(inout) :: m(2)
+      integer :: s, a, b, ia, ib
+      do s = 1, surf%nseg
+        if (owned_index(ct, int(surf%segments(1, s))) == 0) cycle
+        do a = 1, 4
+          ia = sorted_find(near%c, int(surf%segments(a, s)))
+          if (ia == 0) then
+            m(2) = 1.0_rk
+            exit
+          end if
+          do b = 1, a - 1
+            ib = sorted_find(near%c, int(surf%segments(b, s)))
+            m(1) = max(m(1), norm2(near%x(:, ia) - near%x(:, ib)))
+          end do
+        end do
+      end do
+    end subroutine surface_spans
+
+  end subroutine near_nodes
+
+  !> The segments of a whole surface whose corners are all near, as a
+  !> surface numbered by near index, in the whole surface's order (so its
+  !> node -> segment lists and neighbours are the whole surface's wherever
+  !> every segment around a node is there).
+  subroutine near_surface(surf, near, sub)
+    type(contact_surface_t), intent(in) :: surf
+    type(near_t), intent(in) :: near
+    type(contact_surface_t), intent(inout) :: sub
+    integer(ik), allocatable :: segs(:, :)
+    integer, allocatable :: list(:)
+    integer :: s, k, n, j(4)
+    allocate(segs(4, surf%nseg), list(surf%nseg))
+    n = 0
+    do s = 1, surf%nseg
+      do k = 1, 4
+        j(k) = sorted_find(near%c, int(surf%segments(k, s)))
+      end do
+      if (any(j == 0)) cycle
+      n = n + 1
+      segs(:, n) = int(j, ik)
+      list(n) = s
+    end do
+    call surface_from_segments(segs(:, 1:n), surf%segment_id(list(1:n)), surf=sub)
+  end subroutine near_surface
+
+  !> The boxes (lower and upper corners) of every deck interface's whole
+  !> surfaces a and b at x: each rank's owned nodes, one reduction.
+  !> (3, 2, 2, ndeck): corner, lower/upper, side a/b, interface. Collective.
+  function surface_boxes(ct, x) result(boxes)
     type(contact_t), intent(in) :: ct
     real(rk), intent(in) :: x(:, :) !< (3, nnode local)
-    real(rk), allocatable :: xall(:, :)
-    real(rk), allocatable :: flat(:)
-    integer :: i, c
-    allocate(flat(3 * ct%nall))
-    flat = 0.0_rk
-    do i = 1, ct%nown
-      c = ct%own_contact(i)
-      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
+    real(rk), allocatable :: boxes(:, :, :, :)
+    real(rk), allocatable :: v(:)
+    integer :: k, o, c, base
+    allocate(v(12 * ct%ndeck), boxes(3, 2, 2, ct%ndeck))
+    v = huge(1.0_rk)
+    do k = 1, ct%ndeck
+      do o = 1, ct%nown
+        c = ct%own_contact(o)
+        base = 12 * (k - 1)
+        if (surface_node_index(ct%pairs(k)%all_a, c) > 0) call widen(base)
+        if (surface_node_index(ct%pairs(k)%all_b, c) > 0) call widen(base + 6)
+      end do
     end do
-    call par_sum_array(flat)
-    xall = reshape(flat, [3, ct%nall])
-  end function positions_everywhere
+    ! (the upper corners as minima of the negated coordinates: one reduction)
+    call par_min_array(v)
+    do k = 1, ct%ndeck
+      base = 12 * (k - 1)
+      boxes(:, 1, 1, k) = v(base + 1:base + 3)
+      boxes(:, 2, 1, k) = -v(base + 4:base + 6)
+      boxes(:, 1, 2, k) = v(base + 7:base + 9)
+      boxes(:, 2, 2, k) = -v(base + 10:base + 12)
+    end do
+  contains
+    subroutine widen(b)
+      integer, intent(in) :: b
+      v(b + 1:b + 3) = min(v(b + 1:b + 3), x(:, ct%own_local(o)))
+      v(b + 4:b + 6) = min(v(b + 4:b + 6), -x(:, ct%own_local(o)))
+    end subroutine widen
+  end function surface_boxes
 
-  !> Per node of a global surface, whether this rank owns it.
-  function owned_nodes(ct, surf) result(owned)
+  !> Per node of a surface numbered by near index, whether this rank owns it.
+  function owned_nodes(ct, near, surf) result(owned)
     type(contact_t), intent(in) :: ct
+    type(near_t), intent(in) :: near
     type(contact_surface_t), intent(in) :: surf
     logical, allocatable :: owned(:)
     integer :: i
     allocate(owned(surf%nnode))
     do i = 1, surf%nnode
-      owned(i) = owned_index(ct, surf%nodes(i)) > 0
+      owned(i) = owned_index(ct, near%c(surf%nodes(i))) > 0
     end do
   end function owned_nodes
 
-  !> Every contact node's penetration of the other side of each deck
-  !> interface at x (the deeper of its depths on sides a and b, zero
-  !> outside), on every rank, with the nodes' global ids: what a refresh
-  !> compares before and after (contact_refresh_offsets). Collective.
-  subroutine contact_depths(ct, x, gid, depth)
+  !> The audit of both sides of deck interface k at the near positions,
+  !> with the given offsets of the owned nodes (absent: zero): the
+  !> surfaces (the whole ones on one rank, the near parts otherwise), the
+  !> owned nodes of each, and each side's audit. Side b is not audited in
+  !> self-contact.
+  subroutine audit_interface(ct, near, boxes, k, with_offsets, sa, sb, sel_a, sel_b, ra, rb)
     type(contact_t), intent(in) :: ct
+    type(near_t), intent(in) :: near
+    real(rk), intent(in) :: boxes(:, :, :, :) !< surface_boxes (unread on one rank)
+    integer, intent(in) :: k
+    logical, intent(in) :: with_offsets
+    type(contact_surface_t), intent(inout) :: sa, sb
+    logical, allocatable, intent(out) :: sel_a(:), sel_b(:)
+    type(side_t), intent(out) :: ra, rb
+    associate(p => ct%pairs(k))
+      if (near%all) then
+        sel_a = owned_nodes(ct, near, p%all_a)
+        sel_b = owned_nodes(ct, near, p%all_b)
+        call audit_side(near%x, p%all_a, p%all_b, p%self, p%reach, &
+            p%spec%penetration_tolerance, offsets_of(p%all_a), sel_a, ct%planes, ra)
+        if (.not. p%self) call audit_side(near%x, p%all_b, p%all_a, .false., p%reach, &
+            p%spec%penetration_tolerance, offsets_of(p%all_b), sel_b, ct%planes, rb)
+      else
+        call near_surface(p%all_a, near, sa)
+        call near_surface(p%all_b, near, sb)
+        sel_a = owned_nodes(ct, near, sa)
+        sel_b = owned_nodes(ct, near, sb)
+        call audit_side(near%x, sa, sb, p%self, p%reach, p%spec%penetration_tolerance, &
+            offsets_of(sa), sel_a, ct%planes, ra, boxes(:, :, 2, k))
+        if (.not. p%self) call audit_side(near%x, sb, sa, .false., p%reach, &
+            p%spec%penetration_tolerance, offsets_of(sb), sel_b, ct%planes, rb, &
+            boxes(:, :, 1, k))
+      end if
+    end associate
+  contains
+    !> The interface's offsets of the owned nodes of a surface, by surface
+    !> node (zero on the others, which the audit does not read).
+    function offsets_of(surf) result(off)
+      type(contact_surface_t), intent(in) :: surf
+      real(rk), allocatable :: off(:)
+      integer :: n, o
+      allocate(off(surf%nnode))
+      off = 0.0_rk
+      if (.not. with_offsets) return
+      do n = 1, surf%nnode
+        o = owned_index(ct, near%c(surf%nodes(n)))
+        if (o > 0) off(n) = ct%pairs(k)%offset(o)
+      end do
+    end function offsets_of
+  end subroutine audit_interface
+
+  !> Each owned contact node's penetration of the other side of each deck
+  !> interface at x (the deeper of its depths on sides a and b, zero
+  !> outside), with the nodes' global ids (ascending): what a refresh
+  !> compares before and after (contact_refresh_offsets; a refresh keeps
+  !> each node's mesh owner). Collective.
+  subroutine contact_depths(ct, x, gid, depth)
+    type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x(:, :) !< (3, nnode local) positions now
-    integer(i8), allocatable, intent(out) :: gid(:) !< (nall) global ids
-    real(rk), allocatable, intent(out) :: depth(:, :) !< (nall, ndeck)
-    real(rk), allocatable :: xall(:, :), zero_a(:), zero_b(:)
+    integer(i8), allocatable, intent(out) :: gid(:) !< (nown) global ids
+    real(rk), allocatable, intent(out) :: depth(:, :) !< (nown, ndeck)
+    type(near_t) :: near
+    type(contact_surface_t) :: sa, sb
+    real(rk), allocatable :: boxes(:, :, :, :)
     logical, allocatable :: sel_a(:), sel_b(:)
     type(side_t) :: ra, rb
-    integer :: k, i
+    integer :: k
 
-    allocate(gid(ct%nall), depth(ct%nall, ct%ndeck))
-    gid = ct%all_gid
+    allocate(gid(ct%nown), depth(ct%nown, ct%ndeck))
+    gid = ct%all_gid(ct%own_contact)
     depth = 0.0_rk
     if (ct%npair == 0) return
-    xall = positions_everywhere(ct, x)
+    call near_nodes(ct, x, near)
+    allocate(boxes(3, 2, 2, ct%ndeck))
+    if (.not. near%all) boxes = surface_boxes(ct, x)
     do k = 1, ct%ndeck
-      associate(p => ct%pairs(k))
-        sel_a = owned_nodes(ct, p%all_a)
-        sel_b = owned_nodes(ct, p%all_b)
-        allocate(zero_a(p%all_a%nnode), zero_b(p%all_b%nnode))
-        zero_a = 0.0_rk
-        zero_b = 0.0_rk
-        call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
-            p%spec%penetration_tolerance, zero_a, sel_a, ct%planes, ra)
-        do i = 1, p%all_a%nnode
-          if (sel_a(i)) depth(p%all_a%nodes(i), k) = max(depth(p%all_a%nodes(i), k), ra%pen(i))
-        end do
-        if (.not. p%self) then
-          call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
-              p%spec%penetration_tolerance, zero_b, sel_b, ct%planes, rb)
-          do i = 1, p%all_b%nnode
-            if (sel_b(i)) depth(p%all_b%nodes(i), k) = max(depth(p%all_b%nodes(i), k), &
-                rb%pen(i))
-          end do
-        end if
-        ! (one owner each, zero elsewhere: the sums are the owners' values)
-        call par_sum_array(depth(:, k))
-        deallocate(sel_a, sel_b, zero_a, zero_b)
-      end associate
+      call audit_interface(ct, near, boxes, k, .false., sa, sb, sel_a, sel_b, ra, rb)
+      call deepen(ct%pairs(k)%all_a, sa, sel_a, ra)
+      if (.not. ct%pairs(k)%self) call deepen(ct%pairs(k)%all_b, sb, sel_b, rb)
     end do
+  contains
+    subroutine deepen(whole, part, sel, side)
+      type(contact_surface_t), intent(in) :: whole, part
+      logical, intent(in) :: sel(:)
+      type(side_t), intent(in) :: side
+      integer :: i, o
+      do i = 1, size(sel)
+        if (.not. sel(i)) cycle
+        if (near%all) then
+          o = owned_index(ct, near%c(whole%nodes(i)))
+        else
+          o = owned_index(ct, near%c(part%nodes(i)))
+        end if
+        depth(o, k) = max(depth(o, k), side%pen(i))
+      end do
+    end subroutine deepen
   end subroutine contact_depths
 
   !> After a refresh, at the same positions x as contact_depths took gid and
@@ -405,17 +646,16 @@ contains
     integer(i8), allocatable :: gid_now(:)
     real(rk), allocatable :: depth_now(:, :)
     real(rk) :: before
-    integer :: k, i, c, o
+    integer :: k, c, o
     if (ct%npair == 0) return
     call contact_depths(ct, x, gid_now, depth_now)
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
         do o = 1, ct%nown
-          i = ct%own_contact(o)
-          c = sorted_find(gid, gid_now(i))
+          c = sorted_find(gid, gid_now(o))
           before = 0.0_rk
           if (c > 0) before = depth(c, k)
-          p%offset(o) = max(p%offset(o) + depth_now(i, k) - before, 0.0_rk)
+          p%offset(o) = max(p%offset(o) + depth_now(o, k) - before, 0.0_rk)
         end do
       end associate
     end do
@@ -424,12 +664,18 @@ contains
     end do
   end subroutine contact_refresh_offsets
 
+  !> The audit of every interface at positions x (local mesh nodes; the
+  !> owned ones are read): history columns, the per-node smallest gap for
+  !> the dumps, a rate-limited warning, and ct%stop_run for on_penetration =
+  !> 'stop'. Collective.
   subroutine contact_audit_run(ct, x, cycle, time)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x(:, :)
     integer(i8), intent(in) :: cycle
     real(rk), intent(in) :: time
-    real(rk), allocatable :: xall(:, :), rec(:), all(:, :)
+    real(rk), allocatable :: rec(:), all(:, :), boxes(:, :, :, :)
+    type(near_t) :: near
+    type(contact_surface_t) :: sa, sb
     type(side_t) :: ra, rb
     logical, allocatable :: sel_a(:), sel_b(:)
     real(rk) :: sums(4), worst(2), deep
@@ -437,26 +683,23 @@ contains
     character(len=600) :: text
 
     if (ct%npair == 0) return
-    xall = positions_everywhere(ct, x)
+    call near_nodes(ct, x, near)
+    allocate(boxes(3, 2, 2, ct%ndeck))
+    if (.not. near%all) boxes = surface_boxes(ct, x)
     ct%gap_own = huge(1.0_rk)
     allocate(rec(6), all(6, par_size()))
     ! The deck's interfaces (a reverse pass audits nothing of its own).
     do k = 1, ct%ndeck
       associate(p => ct%pairs(k))
-        sel_a = owned_nodes(ct, p%all_a)
-        sel_b = owned_nodes(ct, p%all_b)
-        call audit_side(xall, p%all_a, p%all_b, p%self, p%reach, &
-            p%spec%penetration_tolerance, owned_offsets(p%all_a), sel_a, ct%planes, ra)
-        if (.not. p%self) call audit_side(xall, p%all_b, p%all_a, .false., p%reach, &
-            p%spec%penetration_tolerance, owned_offsets(p%all_b), sel_b, ct%planes, rb)
+        call audit_interface(ct, near, boxes, k, .true., sa, sb, sel_a, sel_b, ra, rb)
         worst = 0.0_rk
         sums = 0.0_rk
         unheld = 0
         deep = -1.0_rk
         deep_node = 0
-        do i = 1, p%all_a%nnode
+        do i = 1, size(sel_a)
           if (.not. sel_a(i)) cycle
-          c = p%all_a%nodes(i)
+          c = contact_of(p%all_a, sa, i)
           o = owned_index(ct, c)
           ct%gap_own(o) = min(ct%gap_own(o), ra%gap(i))
           worst(1) = max(worst(1), ra%pen(i))
@@ -467,9 +710,9 @@ contains
           end if
         end do
         if (.not. p%self) then
-          do i = 1, p%all_b%nnode
+          do i = 1, size(sel_b)
             if (.not. sel_b(i)) cycle
-            c = p%all_b%nodes(i)
+            c = contact_of(p%all_b, sb, i)
             o = owned_index(ct, c)
             ct%gap_own(o) = min(ct%gap_own(o), rb%gap(i))
             worst(2) = max(worst(2), rb%pen(i))
@@ -484,7 +727,7 @@ contains
         call par_sum_array(sums)
         ! The deepest violation over the ranks (ties to the lower node).
         rec = [deep, real(deep_node, rk), 0.0_rk, 0.0_rk, 0.0_rk, worst(1)]
-        if (deep_node > 0) rec(3:5) = xall(:, deep_node)
+        if (deep_node > 0) rec(3:5) = x(:, ct%own_local(owned_index(ct, deep_node)))
         call par_allgather(rec, all)
         worst(1) = maxval(all(6, :))
         rec(6) = worst(2)
@@ -518,19 +761,17 @@ contains
 
   contains
 
-    !> The interface's offsets of the owned nodes of a surface, by surface
-    !> node (zero on the others, which the audit does not read).
-    function owned_offsets(surf) result(off)
-      type(contact_surface_t), intent(in) :: surf
-      real(rk), allocatable :: off(:)
-      integer :: n, o
-      allocate(off(surf%nnode))
-      off = 0.0_rk
-      do n = 1, surf%nnode
-        o = owned_index(ct, surf%nodes(n))
-        if (o > 0) off(n) = ct%pairs(k)%offset(o)
-      end do
-    end function owned_offsets
+    !> Contact index of node i of the audited surface: the whole surface's
+    !> (one rank) or its near part's.
+    integer function contact_of(whole, part, i) result(cc)
+      type(contact_surface_t), intent(in) :: whole, part
+      integer, intent(in) :: i
+      if (near%all) then
+        cc = near%c(whole%nodes(i))
+      else
+        cc = near%c(part%nodes(i))
+      end if
+    end function contact_of
 
     !> Whether a penetrating node of surface b (owned node o) counts as held:
     !> a method that enforces surface b's nodes (DLM), or a reverse pass,

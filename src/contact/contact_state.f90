@@ -275,6 +275,11 @@ module contact_state
     logical :: stop_run = .false. !< on_penetration = 'stop' and the audit failed
     real(rk) :: audit_seconds = 0.0_rk !< wall time in the audit (set by the caller)
     integer :: audits = 0 !< audits run
+    !> the largest segment span (longest distance between two corners of a
+    !> segment) of the contact surfaces at the last audit: the next audit's
+    !> first guess of how far around its owned nodes a rank needs positions
+    !> (contact_monitor: near_nodes; 0 = none yet)
+    real(rk) :: audit_span = 0.0_rk
     ! Contact output (dumps, history, restart; each interface's work is in pairs(:)%work).
     !> (nnode local) signed distance of a contact node to the opposite surface
     !> at the last audit (< 0: penetration; 0 off the contact surfaces)
