@@ -38,7 +38,7 @@ module contact_monitor
   use contact_sides, only: side_context_t, side_surface
   use mesh_local, only: mesh_t
   use parallel_env, only: par_sum_array, par_sum_exact, par_rank, par_size, par_allgather, &
-      par_max_array
+      par_max_array, par_max
   use parallel_route, only: par_min_array
   use parallel_exchange, only: par_exchange, par_exchange_counts
   implicit none
@@ -69,6 +69,9 @@ module contact_monitor
   !> largest segment spans (two are needed: a segment within reach of a node
   !> and the segments around its corners; the rest is margin).
   real(rk), parameter :: SPAN_WIDENING = 2.5_rk
+  !> Most boxes a rank sends for its owned nodes (near_nodes; beyond, the
+  !> last box grows to hold the rest).
+  integer, parameter :: MAX_BOXES = 64
 
 contains
 
@@ -336,24 +339,27 @@ contains
 
 
   !> The contact nodes within the audit's reach of this rank's owned ones,
-  !> and around them, with their positions from their owners: each rank's
-  !> box of owned contact nodes is sent to every rank (one gather), and each
-  !> owner sends the positions of its nodes inside a box widened by h. h is
-  !> the largest reach and SPAN_WIDENING times the largest segment span
-  !> (the distance between two corners of one segment); the span is
-  !> measured, after the exchange, by the owner of each segment's first
-  !> corner, and when the exchange was too narrow (a segment with a corner
-  !> missing, or h below the reach and two spans) it is repeated wider. One
-  !> rank holds every node (near%all). Collective.
+  !> and around them, with their positions from their owners. Each rank's
+  !> boxes of owned contact nodes, one per side of each deck interface (a
+  !> rank's mesh part can hold the sides of different interfaces, or of
+  !> bodies far apart, and one box around them all would hold much of the
+  !> problem), go to every rank (one gather), and each owner sends the
+  !> positions of its nodes inside a box widened by h. h is the largest
+  !> reach and SPAN_WIDENING times the largest segment span (the distance
+  !> between two corners of one segment); the span is measured, after the
+  !> exchange, by the owner of each segment's first corner, and when the
+  !> exchange was too narrow (a segment with a corner missing, or h below
+  !> the reach and two spans) it is repeated wider. One rank holds every
+  !> node (near%all). Collective.
   subroutine near_nodes(ct, x, near)
     type(contact_t), intent(inout) :: ct
     real(rk), intent(in) :: x(:, :) !< (3, nnode local)
     type(near_t), intent(out) :: near
-    real(rk), allocatable :: xo(:, :), boxes(:, :), sbuf(:), rbuf(:)
+    real(rk), allocatable :: xo(:, :), mine(:), boxes(:, :), sbuf(:), rbuf(:)
     integer, allocatable :: scount(:), rcount(:), order(:)
     integer(i8), allocatable :: key(:)
-    real(rk) :: box(6), reach, h, meas(2)
-    integer :: np, o, r, n, j, fill
+    real(rk) :: reach, h, meas(2)
+    integer :: np, o, r, n, j, k, fill, nbox
     np = par_size()
     allocate(xo(3, ct%nown))
     do o = 1, ct%nown
@@ -369,16 +375,19 @@ contains
     do j = 1, ct%ndeck
       reach = max(reach, ct%pairs(j)%reach)
     end do
-    box(1:3) = huge(1.0_rk)
-    box(4:6) = -huge(1.0_rk)
-    do o = 1, ct%nown
-      box(1:3) = min(box(1:3), xo(:, o))
-      box(4:6) = max(box(4:6), xo(:, o))
-    end do
-    allocate(boxes(6, np), scount(np), rcount(np))
-    call par_allgather(box, boxes)
     h = 2.0_rk * reach
     if (ct%audit_span > 0.0_rk) h = reach + SPAN_WIDENING * ct%audit_span
+    ! Box b: corners 6 (b - 1) + 1:3 (lower), + 4:6 (the negated upper).
+    allocate(mine(6 * MAX_BOXES), scount(np), rcount(np))
+    mine = huge(1.0_rk)
+    nbox = 0
+    do k = 1, ct%ndeck
+      call side_boxes(ct%pairs(k)%all_a)
+      call side_boxes(ct%pairs(k)%all_b)
+    end do
+    n = max(par_max(nbox), 1)
+    allocate(boxes(6 * n, np))
+    call par_allgather(mine(1:6 * n), boxes)
     do
       do r = 1, np
         scount(r) = 4 * count([(inside(xo(:, o), boxes(:, r)), o = 1, ct%nown)])
@@ -414,10 +423,64 @@ contains
 
   contains
 
-    !> Point q within box b (lower, upper corner) widened by h.
-    pure logical function inside(q, b)
-      real(rk), intent(in) :: q(3), b(6)
-      inside = all(q >= b(1:3) - h) .and. all(q <= b(4:6) + h)
+    !> The boxes of this rank's owned nodes of one surface: split where
+    !> the nodes leave a gap wider than 2 h along an axis (separate bodies,
+    !> separate pieces of one body), so no box spans the space between.
+    subroutine side_boxes(surf)
+      type(contact_surface_t), intent(in) :: surf
+      integer, allocatable :: list(:)
+      integer :: m
+      allocate(list(ct%nown))
+      m = 0
+      do o = 1, ct%nown
+        if (surface_node_index(surf, ct%own_contact(o)) == 0) cycle
+        m = m + 1
+        list(m) = o
+      end do
+      if (m > 0) call split(list(1:m))
+    end subroutine side_boxes
+
+    !> One box around the owned nodes list, or (a gap along an axis, and
+    !> room for more boxes) the boxes of the two sides of the gap.
+    recursive subroutine split(list)
+      integer, intent(in) :: list(:)
+      integer, allocatable :: ord(:)
+      integer :: d, i, b
+      if (nbox < MAX_BOXES - 1) then
+        do d = 1, 3
+          call sort_order(xo(d, list), ord)
+          do i = 1, size(list) - 1
+            if (xo(d, list(ord(i + 1))) - xo(d, list(ord(i))) > 2.0_rk * h) then
+              call split(list(ord(1:i)))
+              call split(list(ord(i + 1:)))
+              return
+            end if
+          end do
+        end do
+      end if
+      if (nbox == MAX_BOXES) then
+        b = MAX_BOXES
+      else
+        nbox = nbox + 1
+        b = nbox
+      end if
+      do i = 1, size(list)
+        mine(6 * b - 5:6 * b - 3) = min(mine(6 * b - 5:6 * b - 3), xo(:, list(i)))
+        mine(6 * b - 2:6 * b) = min(mine(6 * b - 2:6 * b), -xo(:, list(i)))
+      end do
+    end subroutine split
+
+    !> Point q within one of a rank's boxes bx widened by h.
+    pure logical function inside(q, bx)
+      real(rk), intent(in) :: q(3), bx(:)
+      integer :: b
+      inside = .false.
+      do b = 1, size(bx) / 6
+        if (all(q >= bx(6 * b - 5:6 * b - 3) - h) .and. all(-q >= bx(6 * b - 2:6 * b) - h)) then
+          inside = .true.
+          return
+        end if
+      end do
     end function inside
 
     !> The largest span of the segments whose first corner this rank owns
@@ -465,19 +528,24 @@ contains
     type(contact_surface_t), intent(inout) :: sub
     integer(ik), allocatable :: segs(:, :)
     integer, allocatable :: list(:)
-    integer :: s, k, n, j(4)
-    allocate(segs(4, surf%nseg), list(surf%nseg))
-    n = 0
-    do s = 1, surf%nseg
-      do k = 1, 4
-        j(k) = sorted_find(near%c, int(surf%segments(k, s)))
+    integer :: s, k, n, j(4), pass
+    ! (counted first: nothing here is sized by the whole surface)
+    do pass = 1, 2
+      n = 0
+      do s = 1, surf%nseg
+        do k = 1, 4
+          j(k) = sorted_find(near%c, int(surf%segments(k, s)))
+          if (j(k) == 0) exit
+        end do
+        if (k <= 4) cycle
+        n = n + 1
+        if (pass == 1) cycle
+        segs(:, n) = int(j, ik)
+        list(n) = s
       end do
-      if (any(j == 0)) cycle
-      n = n + 1
-      segs(:, n) = int(j, ik)
-      list(n) = s
+      if (pass == 1) allocate(segs(4, n), list(n))
     end do
-    call surface_from_segments(segs(:, 1:n), surf%segment_id(list(1:n)), surf=sub)
+    call surface_from_segments(segs, surf%segment_id(list), surf=sub)
   end subroutine near_surface
 
   !> The boxes (lower and upper corners) of every deck interface's whole
