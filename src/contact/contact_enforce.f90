@@ -52,7 +52,7 @@ module contact_enforce
   use, intrinsic :: iso_fortran_env, only: output_unit
   use mesh_local, only: mesh_t
   use contact_surface, only: contact_surface_t, surface_build, surface_from_segments, &
-      surface_node_index, set_names_of, surface_renumbered
+      surface_node_index, set_names_of, surface_relabelled
   use contact_records, only: records_t, take, send_records
   use contact_search, only: find_key
   use contact_state, only: RIGID_MASS_FACTOR, CONTACT_DIAG_COUNT, CONTACT_DIAG_NAMES, &
@@ -64,7 +64,8 @@ module contact_enforce
   use contact_sides, only: side_context_t, side_surface, side_is_blocks, blocks_of, block_faces
   use contact_parts, only: segment_homes, contact_rebuild, contact_localize, gather_nodes, &
       scatter_nodes, directory_build
-  use parallel_env, only: par_sum_array, par_min, par_max, par_max_array, par_rank, par_size
+  use parallel_env, only: par_sum_array, par_min, par_max, par_max_array, par_rank, par_size, &
+      par_sum_in_place
   implicit none
   private
   public :: contact_setup, contact_apply, contact_work_update, contact_surface_refresh
@@ -273,7 +274,8 @@ contains
   subroutine index_surfaces(ct, raw_a, raw_b, mesh, x, node_mass, rigid, offsets, old_gid, &
       old_offset)
     type(contact_t), intent(inout) :: ct
-    type(contact_surface_t), intent(in) :: raw_a(:), raw_b(:)
+    !> (moved into the interfaces' whole surfaces: left empty)
+    type(contact_surface_t), intent(inout) :: raw_a(:), raw_b(:)
     type(mesh_t), intent(in) :: mesh
     real(rk), intent(in) :: x(:, :), node_mass(:)
     logical, intent(in), optional :: rigid(:)
@@ -282,7 +284,7 @@ contains
     !> (size(old_gid), npair) offsets of old_gid, the owned nodes before a refresh
     real(rk), intent(in), optional :: old_offset(:, :)
     integer(i8), allocatable :: all(:)
-    real(rk), allocatable :: xc(:, :), flat(:)
+    real(rk), allocatable :: xc(:, :)
     integer :: k, n, i, c, count_all
 
     ! Contact nodes: every node of every surface, by global id.
@@ -329,24 +331,20 @@ contains
     call directory_build(ct)
     ! Every contact node's position at x, for the edge flags, sizes,
     ! sagittas and reach below.
-    allocate(flat(3 * ct%nall))
-    flat = 0.0_rk
+    allocate(xc(3, ct%nall))
+    xc = 0.0_rk
     do i = 1, ct%nown
-      c = ct%own_contact(i)
-      flat(3 * c - 2:3 * c) = x(:, ct%own_local(i))
+      xc(:, ct%own_contact(i)) = x(:, ct%own_local(i))
     end do
-    call par_sum_array(flat)
     ! (one owner each, zero elsewhere: the sums are the owners' values)
-    xc = reshape(flat, [3, ct%nall])
-    deallocate(flat)
+    call par_sum_in_place(xc)
+    ! (edge flags are read on the parts' local surfaces only, made from the
+    ! local set's positions at each search, never on the whole ones)
     do k = 1, ct%npair
-      call surface_renumbered(raw_a(k), ct%all_gid, xc, ct%pairs(k)%all_a)
-      call surface_renumbered(raw_b(k), ct%all_gid, xc, ct%pairs(k)%all_b)
+      call surface_relabelled(raw_a(k), ct%all_gid, ct%pairs(k)%all_a)
+      call surface_relabelled(raw_b(k), ct%all_gid, ct%pairs(k)%all_b)
       ct%pairs(k)%size = 0.5_rk * (median_size(xc, ct%pairs(k)%all_a) + &
           median_size(xc, ct%pairs(k)%all_b))
-      ! Edge flags are read on the parts' local surfaces only (made from the
-      ! local set's positions at each search), never on the whole ones.
-      deallocate(ct%pairs(k)%all_a%edge_convex, ct%pairs(k)%all_b%edge_convex)
     end do
     allocate(ct%fc(3, ct%nown))
     ct%fc = 0.0_rk
@@ -391,6 +389,10 @@ contains
         call surface_sagitta(xc, p%all_a, p%sag_a)
         call surface_sagitta(xc, p%all_b, p%sag_b)
         p%reach = audit_reach(xc, p%all_a, p%all_b)
+        ! Nothing reads the whole surfaces' neighbours after this but the
+        ! audit on one rank, which audits the whole surfaces (on more, it
+        ! audits near parts that find their own: contact_monitor).
+        if (par_size() > 1) deallocate(p%all_a%neighbours, p%all_b%neighbours)
       end associate
     end do
 
@@ -731,8 +733,8 @@ contains
       b = 0.0_rk
       if (.not. allocated(surf%segments)) return
       b = real(size(surf%segments) + size(surf%nodes) + size(surf%node_start) + &
-          size(surf%node_segments) + size(surf%neighbours), rk) * 4.0_rk + &
-          real(size(surf%segment_id), rk) * 8.0_rk
+          size(surf%node_segments), rk) * 4.0_rk + real(size(surf%segment_id), rk) * 8.0_rk
+      if (allocated(surf%neighbours)) b = b + real(size(surf%neighbours), rk) * 4.0_rk
       if (allocated(surf%edge_convex)) b = b + real(size(surf%edge_convex), rk) * 4.0_rk
     end function surface_bytes
 

@@ -27,7 +27,7 @@ module contact_surface
   implicit none
   private
   public :: surface_build, surface_from_segments, surface_update_edges, set_names_of
-  public :: surface_renumbered
+  public :: surface_renumbered, surface_relabelled
   public :: contact_surface_rebuild
   public :: surface_node_index, edge_end
   public :: ring_of, local_surface, master_neighbourhood, keep_lower_side, nodal_areas
@@ -312,6 +312,37 @@ contains
     end do
     call surface_from_segments(segments, raw%segment_id, x, surf)
   end subroutine surface_renumbered
+
+  !> The surface raw (global node ids) moved into surf with its nodes
+  !> numbered by their place in the ascending ids (every node of raw among
+  !> them): the same surface as surface_renumbered builds (the numbering is
+  !> monotone, so the node order, the node -> segment lists and the
+  !> neighbours stay as they are), without a second copy and without edge
+  !> flags. raw is left empty.
+  subroutine surface_relabelled(raw, ids, surf)
+    type(contact_surface_t), intent(inout) :: raw
+    integer(i8), intent(in) :: ids(:) !< ascending global node ids
+    type(contact_surface_t), intent(inout) :: surf
+    integer :: s, c, i
+    call surf%free()
+    do s = 1, raw%nseg
+      do c = 1, 4
+        raw%segments(c, s) = int(sorted_find(ids, int(raw%segments(c, s), i8)), ik)
+      end do
+    end do
+    do i = 1, raw%nnode
+      raw%nodes(i) = int(sorted_find(ids, int(raw%nodes(i), i8)), ik)
+    end do
+    surf%nseg = raw%nseg
+    surf%nnode = raw%nnode
+    call move_alloc(raw%segments, surf%segments)
+    call move_alloc(raw%segment_id, surf%segment_id)
+    call move_alloc(raw%nodes, surf%nodes)
+    call move_alloc(raw%node_start, surf%node_start)
+    call move_alloc(raw%node_segments, surf%node_segments)
+    call move_alloc(raw%neighbours, surf%neighbours)
+    call raw%free()
+  end subroutine surface_relabelled
 
   !> Recompute the convex flag of every edge from the current positions.
   subroutine surface_update_edges(surf, x)

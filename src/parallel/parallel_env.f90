@@ -10,7 +10,7 @@ module parallel_env
   public :: par_init, par_finalize, par_abort
   public :: par_rank, par_size, par_comm, par_comm_handle, par_info_null_handle, par_io_info_handle
   public :: par_bcast, par_sum, par_sum_array, par_min, par_max, par_max_array, par_allgather
-  public :: par_sum_exact, traffic_count
+  public :: par_sum_exact, traffic_count, par_sum_in_place
 
   !> Counters of one caller's communication (the contact's), for its run
   !> report: what this rank sent to other ranks and how often it had to
@@ -195,6 +195,13 @@ contains
     if (present(traffic)) call traffic_count(traffic, t0)
     x = s
   end subroutine par_sum_array
+
+  !> Global sum of each element of a (3, n) array in place (MPI_IN_PLACE:
+  !> no second copy of a large array).
+  subroutine par_sum_in_place(x)
+    real(rk), intent(inout), contiguous :: x(:, :)
+    call MPI_Allreduce(MPI_IN_PLACE, x, size(x), MPI_DOUBLE_PRECISION, MPI_SUM, comm_world)
+  end subroutine par_sum_in_place
 
   !> In-place global maximum of each element of a small array.
   subroutine par_max_array(x, traffic)

@@ -3,7 +3,8 @@
 !> closed surfaces (every triangle tried; inside from the winding number,
 !> the sum of the triangles' solid angles over 4 pi), the free-boundary and
 !> self-contact rules, a hemisphere ending on a symmetry plane against the
-!> whole sphere, and the sagitta estimate on a sphere.
+!> whole sphere, the sagitta estimate on a sphere, and the audit of a part of
+!> a surface (what a rank holds on several ranks) against the whole.
 program test_contact_audit
   use core_kinds, only: rk, ik, i8
   use check, only: check_true, check_close, check_summary
@@ -20,6 +21,7 @@ program test_contact_audit
   call self_sheets()
   call self_vfold()
   call sphere_sagitta()
+  call near_part()
   call check_summary()
 
 contains
@@ -497,5 +499,94 @@ contains
     call check_true('sagitta within [1/2, 2] of the sphere''s bulge', &
         ratio_lo >= 0.5_rk .and. ratio_hi <= 2.0_rk)
   end subroutine sphere_sagitta
+
+  !> The audit of some nodes against the part of the target near them (the
+  !> segments whose corners all lie within the reach and two segment spans
+  !> of the nodes' box) on the whole target's grid box, as contact_monitor
+  !> audits on several ranks, against the audit on the whole target: the
+  !> same gaps, inward directions and closest segments, bit for bit. The
+  !> probes sit above the cube's lattice nodes along the faces' normals, so
+  !> the closest point is a lattice node shared by several segments, and
+  !> which of them is reported (the first visited of exactly equal
+  !> distances) depends on the order of the candidates: a part that visited
+  !> them in another order than the whole surface would report another.
+  subroutine near_part()
+    real(rk), allocatable :: x(:, :), xq(:, :), gap(:), inward(:, :), gap_p(:), inward_p(:, :)
+    integer, allocatable :: hit(:), hit_p(:), list(:)
+    logical, allocatable :: sel(:)
+    type(contact_surface_t) :: target, probes, part
+    integer(ik), allocatable :: seg(:, :)
+    integer(i8), allocatable :: sid(:)
+    real(rk) :: box(3, 2), lo(3), hi(3), reach, span, h, n(3)
+    integer :: nn, i, k, m, s, nsel, ties, bad
+    call cube_surface(8, .false., x, target)
+    nn = size(x, 2)
+    ! One probe segment per target segment: its corners lifted off the face
+    ! by 0.05 (outside) or -0.05 (inside, every second segment).
+    allocate(xq(3, nn + 4 * target%nseg), seg(4, target%nseg), sid(target%nseg))
+    xq(:, :nn) = x
+    do s = 1, target%nseg
+      n = cross(x(:, target%segments(2, s)) - x(:, target%segments(1, s)), &
+          x(:, target%segments(4, s)) - x(:, target%segments(1, s)))
+      n = n / norm2(n)
+      if (mod(s, 2) == 0) n = -n
+      do k = 1, 4
+        xq(:, nn + 4 * (s - 1) + k) = x(:, target%segments(k, s)) + 0.05_rk * n
+      end do
+      seg(:, s) = int(nn + [4 * s - 3, 4 * s - 2, 4 * s - 1, 4 * s], ik)
+      sid(s) = int(s, i8)
+    end do
+    call surface_from_segments(seg, sid, xq, probes)
+    reach = 0.15_rk
+    allocate(gap(probes%nnode), hit(probes%nnode), inward(3, probes%nnode))
+    allocate(gap_p(probes%nnode), hit_p(probes%nnode), inward_p(3, probes%nnode))
+    sel = [(xq(1, probes%nodes(i)) < 0.2_rk, i = 1, probes%nnode)]
+    nsel = count(sel)
+    call audit_gaps(xq, probes, target, .false., reach, sel, gap, hit, inward)
+    ! The part: the box of the selected probes widened by the reach and two
+    ! spans (the longest distance between two corners of a segment).
+    span = 0.0_rk
+    do s = 1, target%nseg
+      do k = 1, 4
+        do m = 1, k - 1
+          span = max(span, norm2(x(:, target%segments(k, s)) - x(:, target%segments(m, s))))
+        end do
+      end do
+    end do
+    h = reach + 2.0_rk * span
+    lo = huge(1.0_rk)
+    hi = -huge(1.0_rk)
+    do i = 1, probes%nnode
+      if (.not. sel(i)) cycle
+      lo = min(lo, xq(:, probes%nodes(i)) - h)
+      hi = max(hi, xq(:, probes%nodes(i)) + h)
+    end do
+    list = pack([(s, s = 1, target%nseg)], [(all(x(:, target%segments(1, s)) >= lo .and. &
+        x(:, target%segments(1, s)) <= hi) .and. all(x(:, target%segments(2, s)) >= lo .and. &
+        x(:, target%segments(2, s)) <= hi) .and. all(x(:, target%segments(3, s)) >= lo .and. &
+        x(:, target%segments(3, s)) <= hi) .and. all(x(:, target%segments(4, s)) >= lo .and. &
+        x(:, target%segments(4, s)) <= hi), s = 1, target%nseg)])
+    call surface_from_segments(target%segments(:, list), target%segment_id(list), x, part)
+    box(:, 1) = minval(x, dim=2)
+    box(:, 2) = maxval(x, dim=2)
+    call audit_gaps(xq, probes, part, .false., reach, sel, gap_p, hit_p, inward_p, &
+        grid_box=box)
+    bad = 0
+    ties = 0
+    do i = 1, probes%nnode
+      if (.not. sel(i)) cycle
+      if (hit(i) > 0) then
+        ! (the closest point a lattice node of several segments: a tie)
+        if (count(target%segments == target%segments(1, hit(i))) > 1) ties = ties + 1
+      end if
+      if (hit_p(i) > 0) hit_p(i) = list(hit_p(i))
+      if (gap_p(i) /= gap(i) .or. hit_p(i) /= hit(i) .or. any(inward_p(:, i) /= inward(:, i))) &
+          bad = bad + 1
+    end do
+    call check_true('audit near part: some probes audited, on part of the target', &
+        nsel > 20 .and. size(list) < target%nseg .and. ties > 0)
+    call check_true('audit near part: gaps, directions and closest segments those of the '// &
+        'whole target, bit for bit', bad == 0)
+  end subroutine near_part
 
 end program test_contact_audit
