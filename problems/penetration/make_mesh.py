@@ -64,7 +64,8 @@ LEVELS = {
     # edge (n_fine, default from h), the core's half-width as a fraction of
     # r_fine (core, default 0.5), the first polar ring's width (h_ring,
     # default h), the axial zone size in the channel (h_z, default h), the
-    # channel's depth (z_fine, default Z_FINE) and radii beyond which the
+    # channel's depth (z_fine, default Z_FINE), the target's radius and depth
+    # (radius, depth; default TARGET_RADIUS, DEPTH) and radii beyond which the
     # polar rings coarsen 3:1 tangentially (coarsen). The rod's tip zone is
     # r_tip / (n_core + n_ring) across and 0.48 mm for the kite.
     #
@@ -97,6 +98,11 @@ LEVELS = {
 # channel fine only to 30 mm ("<level>_30").
 for _name in ("coarse", "fine", "coarse12"):
     LEVELS[_name + "_30"] = dict(LEVELS[_name], z_fine=30.0e-3)
+# The target-size study (README.md): the coarse deck's target 1.5 times as
+# wide (radius 190.5 mm) and as deep (450 mm), the same zones near the axis
+# and along the channel (the polar rings and the axial zones below the
+# channel graded on to the larger size).
+LEVELS["coarse_big"] = dict(LEVELS["coarse"], radius=1.5 * TARGET_RADIUS, depth=1.5 * DEPTH)
 
 
 def nose_radius(x):
@@ -359,7 +365,7 @@ def build(level, tip="flat"):
     # Target: fine O-grid to R_FINE, polar rings graded to the outer radius.
     r_fine = spec.get("r_fine", R_FINE)
     n_fine = spec.get("n_fine", max(1, round(0.5 * r_fine / h)))
-    radii = r_fine + graded(TARGET_RADIUS - r_fine, spec.get("h_ring", h), spec["h_far"])[1:]
+    radii = r_fine + graded(spec.get("radius", TARGET_RADIUS) - r_fine, spec.get("h_ring", h), spec["h_far"])[1:]
     # 3:1 tangential transitions at the first polar rings beyond the radii in
     # spec["coarsen"] (1-based ring numbers).
     coarsen = [1 + int(np.searchsorted(radii, r)) for r in spec.get("coarsen", ())]
@@ -368,7 +374,7 @@ def build(level, tip="flat"):
     fine_depth = spec.get("z_fine", Z_FINE)
     h_z = spec.get("h_z", h)  # axial zone size of the target's fine part
     z_fine = -graded(fine_depth, h_z, h_z)
-    z_deep = -fine_depth - graded(DEPTH - fine_depth, h_z, spec["h_far"] / 2.0)[1:]
+    z_deep = -fine_depth - graded(spec.get("depth", DEPTH) - fine_depth, h_z, spec["h_far"] / 2.0)[1:]
     z_target = np.concatenate([z_deep[::-1], z_fine[::-1]])
     mesh.extrude("target", target_section, z_target, lambda z: r_fine,
                  dict(xsym="xsym", ysym="ysym", outer="target_side", bottom="target_bottom",

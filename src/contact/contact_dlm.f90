@@ -77,7 +77,7 @@ module contact_dlm
     real(rk), allocatable :: fp_normal(:, :) !< (3, nfp) common normal (from the hitting side)
     real(rk), allocatable :: fp_pen(:) !< (nfp) penetration at the overlap's deepest vertex (the gate)
     real(rk), allocatable :: fp_area(:) !< (nfp) overlap area
-    real(rk), allocatable :: fp_excess(:) !< (nfp) penetration beyond the recovery allowance
+    real(rk), allocatable :: fp_allowance(:) !< (nfp) the pair's recovery allowance
     logical, allocatable :: fp_gated(:) !< (nfp) the pair's gate in this stage (dlm_cover)
   contains
     procedure, nopass :: pair_kind => dlm_pair_kind
@@ -240,7 +240,7 @@ contains
     call geometry_update(ct%x, p%b, p%gb)
     dl%nfp = 0
     if (.not. allocated(dl%fp_node)) allocate(dl%fp_node(2, 64), dl%fp_share(2, 64), &
-        dl%fp_normal(3, 64), dl%fp_pen(64), dl%fp_area(64), dl%fp_excess(64), dl%fp_gated(64), &
+        dl%fp_normal(3, 64), dl%fp_pen(64), dl%fp_area(64), dl%fp_allowance(64), dl%fp_gated(64), &
         dl%fp_key(64))
     associate(ga => p%ga, gb => p%gb)
       do m = 1, size(p%pairs, 2)
@@ -331,8 +331,7 @@ contains
             ! away for contact and push them out.
             if (pen - kept > 0.5_rk * min(p%size, sqrt(min(sum(ga%area(:, sa)), &
                 sum(gb%area(:, sb)))))) cycle
-            call add_facet_pair(dl, nodeh, noded, wh, wd, pen - kept, s0, nrm, &
-                recovery_excess(pen - kept, allowance), &
+            call add_facet_pair(dl, nodeh, noded, wh, wd, pen - kept, s0, nrm, allowance, &
                 p%pair_key(m) * 64_i8 + int(8 * (i - 1) + j - 1, i8))
           end do
         end do
@@ -342,13 +341,13 @@ contains
   end subroutine dlm_geometry
 
   !> Append one facet pair to the interface's cache, growing it when full.
-  subroutine add_facet_pair(dl, nodeh, noded, wh, wd, pen, s0, nrm, excess, key)
+  subroutine add_facet_pair(dl, nodeh, noded, wh, wd, pen, s0, nrm, allowance, key)
     type(dlm_t), intent(inout) :: dl
     integer, intent(in) :: nodeh, noded
     real(rk), intent(in) :: wh, wd !< the shares of the hitting and target node
     real(rk), intent(in) :: pen !< penetration at the overlap's deepest vertex (also the gate)
     real(rk), intent(in) :: s0, nrm(3) !< overlap area, common normal
-    real(rk), intent(in) :: excess !< penetration beyond the recovery allowance (>= 0)
+    real(rk), intent(in) :: allowance !< the pair's recovery allowance
     integer(i8), intent(in) :: key !< global order: segment pair, facet of a, facet of b
     integer :: n
     if (dl%nfp == size(dl%fp_node, 2)) then
@@ -358,7 +357,7 @@ contains
       call grow_real2(dl%fp_normal, n)
       call grow_real1(dl%fp_pen, n)
       call grow_real1(dl%fp_area, n)
-      call grow_real1(dl%fp_excess, n)
+      call grow_real1(dl%fp_allowance, n)
       call grow_logical1(dl%fp_gated, n)
       call grow_key(dl%fp_key, n)
     end if
@@ -368,7 +367,7 @@ contains
     dl%fp_pen(dl%nfp) = pen
     dl%fp_area(dl%nfp) = s0
     dl%fp_normal(:, dl%nfp) = nrm
-    dl%fp_excess(dl%nfp) = excess
+    dl%fp_allowance(dl%nfp) = allowance
     dl%fp_key(dl%nfp) = key
 
   contains
@@ -604,9 +603,10 @@ contains
     pure real(rk) function recovery_speed(q, w) result(speed)
       integer, intent(in) :: q
       real(rk), intent(in) :: w !< the pair's approach speed at t^n
-      speed = -recovery_speed_of(dl%recovery, dl%fp_excess(q), ct%landing, dt, ct%speed)
-      ! Beyond the tolerance: excess = pen - allowance > (1 - share) pen.
-      if (w < 0.0_rk .and. dl%fp_excess(q) > (1.0_rk - ALLOWANCE_SHARE) * dl%fp_pen(q)) &
+      speed = -recovery_speed_of(dl%recovery, recovery_excess(dl%fp_pen(q), &
+          dl%fp_allowance(q)), ct%landing, dt, ct%speed)
+      ! Beyond the tolerance: pen > allowance / share.
+      if (w < 0.0_rk .and. ALLOWANCE_SHARE * dl%fp_pen(q) > dl%fp_allowance(q)) &
           speed = max(speed, w)
     end function recovery_speed
 

@@ -15,6 +15,12 @@ impact3d_check(parallel/bitwise_penetration "regression;parallel;contact;solids"
 impact3d_regress(long/penetration_coarse_20us "regression;contact;solids;long"
   ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/penetration_coarse_20us
   --t-end 20.0e-6 --mpiexec ${MPIEXEC_EXECUTABLE} --np 2)
+# * long/penetration_coarse_2166: the same checks at 2166 m/s to 50 us, past
+#   the cycles where the contact did positive work (+55 J at 47.7 us) before
+#   DLM's recovery was bounded at the audit's tolerance.
+impact3d_regress(long/penetration_coarse_2166 "regression;contact;solids;long"
+  ${PYTHON3} ${CMAKE_CURRENT_LIST_DIR}/check.py ${EXE} ${WORK}/penetration_coarse_2166
+  --t-end 50.0e-6 --velocity 2166 --mpiexec ${MPIEXEC_EXECUTABLE} --np 2)
 # * long/restart_penetration: 12 us on 2 ranks, restarted from the dump at
 #   6 us (cycle 357 when written; 27 zones eroded, the surfaces rebuilt with
 #   offsets measured)
