@@ -105,6 +105,16 @@ for _name in ("coarse", "fine", "coarse12"):
 LEVELS["coarse_big"] = dict(LEVELS["coarse"], radius=1.5 * TARGET_RADIUS, depth=1.5 * DEPTH)
 
 
+def arc_nodes(nodes, rho, count):
+    """Append count + 1 nodes evenly along the quarter circle of radius rho
+    (from the x axis to the y axis) to nodes; return their indices."""
+    first = len(nodes)
+    for m in range(count + 1):
+        t = 0.5 * math.pi * m / count
+        nodes.append((rho * math.cos(t), rho * math.sin(t)))
+    return list(range(first, first + count + 1))
+
+
 def nose_radius(x):
     """Radius of the sharp tangent ogive at distance x from its tip (0 <= x <= NOSE)."""
     u = NOSE - x
@@ -205,11 +215,7 @@ class Section:
                 count_out = count // 3
                 theta_in = 0.5 * math.pi * np.arange(count + 1) / count
                 mid_rho = 0.5 * (inner_rho + rho)
-                new = []
-                for m in range(count_out + 1):
-                    t = 0.5 * math.pi * m / count_out
-                    new.append(len(nodes))
-                    nodes.append((rho * math.cos(t), rho * math.sin(t)))
+                new = arc_nodes(nodes, rho, count_out)
                 for g in range(count_out):
                     a0, a1, a2, a3 = ring[3 * g:3 * g + 4]
                     c1, c2 = len(nodes), len(nodes) + 1
@@ -220,11 +226,7 @@ class Section:
                     quads += [[a0, b0, c1, a1], [a1, c1, c2, a2], [a2, c2, b1, a3],
                               [c1, b0, b1, c2]]
             else:
-                new = []
-                for m in range(count + 1):
-                    t = 0.5 * math.pi * m / count
-                    new.append(len(nodes))
-                    nodes.append((rho * math.cos(t), rho * math.sin(t)))
+                new = arc_nodes(nodes, rho, count)
                 for m in range(count):
                     quads.append([ring[m], new[m], new[m + 1], ring[m + 1]])
             ysym.append((ring[0], new[0]))
